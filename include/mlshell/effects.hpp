@@ -1,0 +1,103 @@
+// The energy terms of mlshell's effects (paper §3, eq. 3.2 and 3.6), one class per effect.
+//
+//   elastic       ∫ J̄ ∫ ψ(Ẽ(ξ³)) dξ³ dω                   membrane + bending, eq. (3.3)
+//   inertia       ρ/(2 dt²) ∫ |u − û|² dA,  û = u_n + dt v_n  implicit Euler
+//   loads         −s(t) f·u   (gravity ρg, surface, line and point forces; s ramps 0 → 1)
+//   penalties     β/2 ∫ |P(u − d(t))|² ds  (+ β_r/2 ∫ |∂_ν u|² ds for clamps), β = h^-σ
+//
+// Energies are measured from the reference configuration (u = 0), where loads do no work.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+
+#include "mlshell/energy_term.hpp"
+#include "mlshell/material.hpp"
+#include "mlshell/shell_kinematics.hpp"
+
+namespace mlshell {
+
+/// Membrane and bending energy of the shell material (always present).
+class ShellElasticTerm final : public EnergyTerm {
+ public:
+  ShellElasticTerm(const Discretization& disc, const ParallelLayout& layout,
+                   const MaterialSpec& material);
+  PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
+                     std::vector<double>* grad, Mat hess) const override;
+
+ private:
+  struct Element {
+    std::vector<PetscInt> nodes;
+    ElementBasis basis;
+    int first_reference;
+  };
+  const Discretization& disc_;
+  std::vector<Element> elements_;
+  std::vector<ShellReference> references_;  // per element and quadrature point
+  std::unique_ptr<Material> material_;
+  ShellSection section_;
+};
+
+/// Implicit Euler inertia ρ/(2 dt²) ∫ |u − û|² dA with the predictor û = u_n + dt v_n.
+class InertiaTerm final : public EnergyTerm {
+ public:
+  InertiaTerm(const Discretization& disc, const ParallelLayout& layout, double area_density,
+              double dt);
+  /// Sets û from local predictor values (3 per local point).
+  void set_predictor(std::vector<double> local_predictor) { predictor_ = std::move(local_predictor); }
+  PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
+                     std::vector<double>* grad, Mat hess) const override;
+
+ private:
+  struct Element {
+    std::vector<PetscInt> nodes;
+    ElementBasis basis;
+    std::vector<double> area;  // w_g J̄_g
+  };
+  std::vector<Element> elements_;
+  double coefficient_;  // ρ / dt²
+  std::vector<double> predictor_;
+};
+
+/// A constant force field, linear in u: −s(t) f·u with s(t) = min(1, t / t_ramp) if ramped.
+class LinearLoadTerm final : public EnergyTerm {
+ public:
+  /// `local_force`: this rank's contributions, 3 per local point.
+  LinearLoadTerm(std::string name, std::vector<double> local_force, double ramp_time);
+  double scale() const;
+  PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
+                     std::vector<double>* grad, Mat hess) const override;
+
+ private:
+  std::vector<double> force_;
+  double ramp_time_;  // 0: no ramp
+};
+
+/// One penalty sample: a point of a boundary curve (with its quadrature weight) or a single
+/// selected point, with its basis on local nodes.
+struct PenaltySample {
+  std::vector<PetscInt> nodes;
+  std::vector<double> value;   ///< N_i at the point
+  std::vector<double> conormal;///< ∂_ν N_i (clamp rotation), empty otherwise
+  double weight = 0.0;         ///< β × quadrature weight × arc length (β for single points)
+  double rotation_weight = 0.0;
+};
+
+/// Penalty boundary conditions: β/2 Σ w |P(u(ξ) − d(t))|² (+ rotation), eq. (3.6).
+class PenaltyTerm final : public EnergyTerm {
+ public:
+  PenaltyTerm(std::string name, std::vector<PenaltySample> samples, std::array<bool, 3> components,
+              std::function<Eigen::Vector3d(double)> motion);
+  PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
+                     std::vector<double>* grad, Mat hess) const override;
+  /// Largest |u(ξ) − d(t)| over the constrained components at this rank's samples.
+  double max_violation(const std::vector<double>& u) const;
+
+ private:
+  std::vector<PenaltySample> samples_;
+  std::array<bool, 3> components_;
+  std::function<Eigen::Vector3d(double)> motion_;
+};
+
+}  // namespace mlshell

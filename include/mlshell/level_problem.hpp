@@ -1,0 +1,50 @@
+// The objective of one level: the sum of the energy terms a scene enables, evaluated on
+// distributed PETSc vectors of displacements. This is what a solver sees — value, gradient and
+// Hessian — never a mesh.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <petscmat.h>
+
+#include "mlshell/energy_term.hpp"
+
+namespace mlshell {
+
+class LevelProblem {
+ public:
+  explicit LevelProblem(const ParallelLayout& layout);
+  void add_term(std::unique_ptr<EnergyTerm> term);
+  const std::vector<std::unique_ptr<EnergyTerm>>& terms() const { return terms_; }
+  template <class T>
+  T* find_term() const {
+    for (const auto& t : terms_)
+      if (auto* p = dynamic_cast<T*>(t.get())) return p;
+    return nullptr;
+  }
+  const ParallelLayout& layout() const { return layout_; }
+
+  void set_time(double time);
+  /// f(u) and, if g is not null, ∇f(u). A non-finite energy (a trial point outside the
+  /// material's domain) is reported as +inf so that trust-region and line-search methods reject
+  /// the step instead of propagating NaN.
+  PetscErrorCode objective(Vec u, PetscReal* f, Vec g);
+  /// ∇²f(u), assembled into H (created by create_matrix).
+  PetscErrorCode hessian(Vec u, Mat H);
+  PetscErrorCode create_matrix(Mat* H) const { return layout_.create_matrix(H); }
+  /// Global energy of each term at u, in the order of terms().
+  PetscErrorCode term_energies(Vec u, std::vector<double>& energies);
+
+  long objective_evaluations() const { return objective_evaluations_; }
+  long hessian_evaluations() const { return hessian_evaluations_; }
+
+ private:
+  const ParallelLayout& layout_;
+  std::vector<std::unique_ptr<EnergyTerm>> terms_;
+  std::vector<double> u_local_, g_local_;
+  long objective_evaluations_ = 0, hessian_evaluations_ = 0;
+};
+
+}  // namespace mlshell

@@ -1,0 +1,125 @@
+// Result files: every writer here runs on one process (rank 0 of the simulation) with data that
+// has already been gathered in natural (rank-independent) order, and writes atomically: the
+// content goes to `<name>.tmp.<pid>` in the same folder and is renamed over `<name>` only when it
+// is complete, so a reader never sees a partly written file passed off as complete.
+// Errors (cannot create folder, disk full, ...) throw OutputError naming the file and the cause.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace mlshell {
+
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Writes `content` to `path` atomically (temporary file + rename). Creates parent folders.
+void write_file_atomic(const std::filesystem::path& path, const std::string& content);
+
+/// A sampled surface: `points` holds 3 doubles per point, `quads` 4 point indices per quad
+/// (counter-clockwise), `displacement` 3 doubles per point (may be empty).
+struct SurfaceSample {
+  std::vector<double> points;
+  std::vector<std::int64_t> quads;
+  std::vector<double> displacement;
+};
+
+/// Wavefront OBJ of a sampled surface (v and f lines, 1-based indices, `%.17g` coordinates).
+void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
+               const std::string& comment);
+
+/// A time series for ParaView: one HDF5 file per frame (`<stem>_<step 6 digits>.h5` holding
+/// `/geometry` (N×3 float64), `/topology` (M×4 PetscInt, i.e. int32 or int64 as PETSc was built;
+/// the XDMF states which) and, when present, `/displacement` (N×3 float64)) plus `<stem>.xdmf`,
+/// an XDMF 3 temporal collection that is rewritten atomically after each frame, so it is valid
+/// at any moment and lists only complete frames. Adding a step already listed replaces it.
+class XdmfSeries {
+ public:
+  XdmfSeries(std::filesystem::path dir, std::string stem);
+  ~XdmfSeries();
+  XdmfSeries(const XdmfSeries&) = delete;
+  XdmfSeries& operator=(const XdmfSeries&) = delete;
+  void add_frame(int step, double time, const SurfaceSample& surface);
+  const std::filesystem::path& xdmf_path() const { return xdmf_; }
+
+ private:
+  std::filesystem::path dir_, xdmf_;
+  std::string stem_;
+  struct Frame {
+    int step;
+    double time;
+    std::string h5;
+    std::int64_t npoints, nquads;
+    bool displacement = false;  ///< whether the HDF5 file holds /displacement
+  };
+  std::vector<Frame> frames_;
+};
+
+/// A CSV table with a fixed header; each append rewrites the file atomically.
+class CsvTable {
+ public:
+  CsvTable(std::filesystem::path path, std::vector<std::string> columns);
+  /// One value per column; numbers are written with `%.17g`, strings as given (quoted if needed).
+  void append(const std::vector<std::variant<double, long long, std::string>>& row);
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  std::vector<std::string> columns_;
+  std::string text_;
+};
+
+/// A small JSON value for summary.json (objects keep insertion order).
+class Json {
+ public:
+  using Object = std::vector<std::pair<std::string, Json>>;
+  using Array = std::vector<Json>;
+  Json() : v_(nullptr) {}
+  Json(std::nullptr_t) : v_(nullptr) {}
+  Json(bool b) : v_(b) {}
+  Json(int i) : v_(static_cast<long long>(i)) {}
+  Json(long i) : v_(static_cast<long long>(i)) {}
+  Json(long long i) : v_(i) {}
+  Json(double d) : v_(d) {}
+  Json(const char* s) : v_(std::string(s)) {}
+  Json(std::string s) : v_(std::move(s)) {}
+  Json(Array a) : v_(std::make_shared<Array>(std::move(a))) {}
+  Json(Object o) : v_(std::make_shared<Object>(std::move(o))) {}
+  static Json array(const std::vector<double>& xs);
+  /// Adds or replaces a key of an object (the value must be an object).
+  Json& set(const std::string& key, Json value);
+  /// Serialises with 2-space indentation. Non-finite doubles are written as null.
+  std::string dump(int indent = 2) const;
+
+ private:
+  std::variant<std::nullptr_t, bool, long long, double, std::string, std::shared_ptr<Array>,
+               std::shared_ptr<Object>>
+      v_;
+  void dump_to(std::string& out, int indent, int depth) const;
+};
+
+/// State saved for restart: natural-order displacements and velocities of all control points.
+struct Checkpoint {
+  int step = 0;          ///< the completed step
+  double time = 0.0;     ///< time at that step
+  std::uint64_t scene_fingerprint = 0;  ///< hash of the discretization (dofs + reference geometry)
+  std::vector<double> displacement;     ///< 3 per control point
+  std::vector<double> velocity;         ///< 3 per control point (zeros without inertia)
+};
+
+/// Binary format: magic "MLSHCKPT", version, step, time, fingerprint, n, data, and a trailing
+/// checksum. Written atomically.
+void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c);
+/// Throws OutputError naming the file if it is missing, truncated, corrupt (checksum) or of
+/// another format/version.
+Checkpoint read_checkpoint(const std::filesystem::path& path);
+
+}  // namespace mlshell

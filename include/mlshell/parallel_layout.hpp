@@ -1,0 +1,65 @@
+// Distribution of one discretization over MPI ranks.
+//
+// Geometry and topology are replicated on every rank (they are small next to the matrices);
+// work and vectors are distributed. METIS partitions the elements (dual graph of the interior
+// faces); a control point belongs to the lowest rank among the elements whose stencils use it,
+// and PETSc numbers the points rank by rank, each rank's points in natural order. Every rank
+// assembles its own elements into a local (owned + ghost) array and adds it into the global
+// vectors with a reverse scatter, and into block-size-3 AIJ matrices with local block indices.
+#pragma once
+
+#include <vector>
+
+#include <petscmat.h>
+
+#include "mlshell/discretization.hpp"
+
+namespace mlshell {
+
+class ParallelLayout {
+ public:
+  ParallelLayout(MPI_Comm comm, const Discretization& disc);
+  ~ParallelLayout();
+  ParallelLayout(const ParallelLayout&) = delete;
+  ParallelLayout& operator=(const ParallelLayout&) = delete;
+
+  MPI_Comm comm() const { return comm_; }
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  /// Elements (natural face indices) this rank assembles, and the owner of any face.
+  const std::vector<int>& local_elements() const { return local_elements_; }
+  int face_owner(int face) const { return face_owner_[face]; }
+  /// Local points: owned ones first (PETSc order), then ghosts. Natural indices.
+  const std::vector<int>& local_points() const { return local_points_; }
+  int num_local_points() const { return static_cast<int>(local_points_.size()); }
+  int num_owned_points() const { return num_owned_; }
+  /// Local index of a natural point index, or -1 if the point is not local.
+  int local_of(int natural) const { return local_of_natural_[natural]; }
+  int petsc_of(int natural) const { return petsc_of_natural_[natural]; }
+
+  /// A global vector of displacements (block size 3, PETSc order).
+  PetscErrorCode create_vector(Vec* v) const;
+  /// A block-size-3 AIJ matrix preallocated for the element stencils, local-to-global mapping set.
+  PetscErrorCode create_matrix(Mat* A) const;
+  /// Global → local (owned + ghost) values.
+  PetscErrorCode to_local(Vec global, std::vector<double>& local) const;
+  /// Adds local values into a global vector (ADD_VALUES; the global vector is not zeroed).
+  PetscErrorCode add_to_global(const std::vector<double>& local, Vec global) const;
+  /// All values in natural order on rank 0 (empty on other ranks).
+  PetscErrorCode gather_natural(Vec global, std::vector<double>& natural) const;
+  /// Sets a global vector from natural-order values given on rank 0.
+  PetscErrorCode scatter_natural(const std::vector<double>& natural, Vec global) const;
+
+ private:
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  const Discretization& disc_;
+  std::vector<int> face_owner_, local_elements_, local_points_, local_of_natural_,
+      petsc_of_natural_;
+  int num_owned_ = 0, first_owned_ = 0;
+  ISLocalToGlobalMapping l2g_ = nullptr;
+  Vec local_work_ = nullptr, global_template_ = nullptr, natural_work_ = nullptr;
+  VecScatter to_local_ = nullptr, to_natural_ = nullptr;
+};
+
+}  // namespace mlshell

@@ -1,0 +1,219 @@
+// Scene description: what a user's scene.yaml asks mlshell to simulate.
+//
+// parse_scene() reads and validates the YAML file; it never touches PETSc, so it runs (and is
+// tested) without MPI. Every error is a SceneError whose message names the file, the line, the key
+// path (e.g. `effects[2].dirichlet.components`) and the offending value, and says what was expected.
+//
+// Units are SI throughout (m, kg, s, N, Pa); the denim preset converts the paper's Table 1 units.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace mlshell {
+
+/// Raised for any invalid scene: the message is complete and meant for the user as is.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+using Vec3 = std::array<double, 3>;
+
+// ----------------------------------------------------------------------------------------------
+// Geometry
+
+/// `cage: {generator: rectangle, size: [w, h], faces: [nx, ny], origin: [x, y]}`
+struct RectangleCage {
+  std::array<double, 2> size{1.0, 1.0};
+  std::array<int, 2> faces{4, 4};
+  std::array<double, 2> origin{0.0, 0.0};
+};
+
+/// `cage: {generator: l-shape, size: [w, h], faces: [nx, ny], cut: [cx, cy], origin: [x, y]}`:
+/// the rectangle minus its top-right cx × cy block (a re-entrant corner at (w-cx, h-cy)).
+/// The cut must be a whole number of faces in each direction.
+struct LShapeCage {
+  std::array<double, 2> size{1.0, 1.0};
+  std::array<int, 2> faces{10, 10};
+  std::array<double, 2> cut{0.3, 0.3};
+  std::array<double, 2> origin{0.0, 0.0};
+};
+
+/// `cage: {obj: path}` — a plain all-quad OBJ; path relative to the scene file's folder.
+struct ObjCage {
+  std::filesystem::path path;  ///< resolved (absolute or relative to the working directory)
+};
+
+struct GeometrySpec {
+  std::variant<RectangleCage, LShapeCage, ObjCage> cage = RectangleCage{};
+  int refine = 0;  ///< uniform Catmull–Clark refinements of the cage, 0..8
+};
+
+// ----------------------------------------------------------------------------------------------
+// Material
+
+/// `{model: clyde-orthotropic, preset: denim, thickness, density, warp: [1,0,0]}` — eq. (3.3)–(3.4).
+/// With a preset, k/d/mu/alpha come from the preset; any of k, mu, alpha may be given explicitly
+/// instead (then all four phi_j must be given: `mu: [[...],[...],[...],[...]]`, same for alpha).
+struct ClydeMaterial {
+  std::array<double, 4> k{};                      ///< Pa (the paper's Table 1 gives MPa)
+  std::array<std::vector<double>, 4> mu;           ///< mu_ji, i = 1..d_j
+  std::array<std::vector<double>, 4> alpha;        ///< alpha_ji
+};
+
+/// `{model: isotropic-svk, youngs_modulus: E, poisson_ratio: nu, thickness, density}`
+struct SvkMaterial {
+  double youngs_modulus = 0.0;  ///< Pa, > 0
+  double poisson_ratio = 0.0;   ///< in (-1, 0.5)
+};
+
+struct MaterialSpec {
+  std::variant<ClydeMaterial, SvkMaterial> model;
+  std::string preset;           ///< "denim" or empty
+  double thickness = 0.0;       ///< m, > 0
+  double density = 0.0;         ///< area density kg/m², >= 0
+  Vec3 warp{1.0, 0.0, 0.0};     ///< projected onto the reference tangent plane: material direction o1
+  int thickness_points = 3;     ///< Gauss points through the thickness, 1..8
+};
+
+/// Table 1 of the paper (denim), in SI units (k converted from MPa to Pa), with mu_j1 completed
+/// so that sum_i mu_ji = 1 (phi_j'(0) = 1). See DESIGN.md "Material and shell kinematics".
+ClydeMaterial denim_preset();
+
+// ----------------------------------------------------------------------------------------------
+// Selections: where an effect acts.
+
+/// A boundary curve: all of it, a named side of a generated cage, or the boundary parts in a box.
+struct CurveSelection {
+  enum class Kind { All, Side, Box } kind = Kind::All;
+  std::string side;  ///< Kind::Side: left|right|bottom|top (+ re-entrant for l-shape cages)
+  Vec3 box_min{}, box_max{};
+};
+
+/// A single point of the surface.
+struct PointSelection {
+  enum class Kind { At, Corner, Param } kind = Kind::At;
+  Vec3 at{};                            ///< Kind::At: nearest point of the reference limit surface
+  std::string corner;                   ///< Kind::Corner: bottom-left|bottom-right|top-left|top-right
+  std::array<double, 2> param{};        ///< Kind::Param: (u, v) in [0,1]² of a generated cage's domain
+};
+
+using Selection = std::variant<CurveSelection, PointSelection>;
+
+/// Syntax (`where:` value): `boundary`, `boundary(left)`, `corner(top-right)`, `point(0.5, 0.5)`,
+/// `{at: [x, y, z]}`, `{box: {min: [...], max: [...]}}`.
+/// The string form is what the user wrote (kept for messages and summary.json).
+struct Where {
+  Selection selection;
+  std::string text;
+};
+
+// ----------------------------------------------------------------------------------------------
+// Effects: exactly the ones the scene lists are built.
+
+/// `motion: {translate: [dx, dy, dz], over: [t0, t1]}`: the prescribed displacement grows
+/// linearly from 0 at t0 to `translate` at t1 and stays there (keyframes: a list of such
+/// segments applied one after another is not supported; one segment per effect).
+struct Motion {
+  Vec3 translate{0, 0, 0};
+  std::array<double, 2> over{0.0, 0.0};  ///< t0 <= t1; t0 == t1 means a jump at t0
+  /// Prescribed displacement at time t.
+  Vec3 at(double t) const;
+};
+
+struct InertiaEffect {};
+struct GravityEffect { Vec3 acceleration{0, 0, -9.81}; };
+struct SurfaceLoadEffect { Vec3 force_per_area{}; bool ramp = false; };
+struct LineLoadEffect { Where where; Vec3 force_per_length{}; bool ramp = false; };
+struct PointLoadEffect { Where where; Vec3 force{}; bool ramp = false; };
+
+/// Penalty Dirichlet condition (paper eq. 3.6) with beta = h^-sigma unless `penalty` is given.
+/// `dirichlet: {where, components: [x, y, z], motion: {...}, sigma: 5, penalty: 1e8}`
+struct DirichletEffect {
+  Where where;
+  std::array<bool, 3> components{true, true, true};
+  std::optional<Motion> motion;
+  double sigma = 5.0;              ///< > 0
+  std::optional<double> penalty;   ///< explicit beta > 0 (overrides sigma)
+};
+
+/// Clamp: displacement and rotation (the slope across the boundary) held by penalties.
+/// `clamp: {where, motion, sigma, penalty, rotation_penalty}`; `where` must be a curve.
+struct ClampEffect {
+  Where where;
+  std::optional<Motion> motion;
+  double sigma = 5.0;
+  std::optional<double> penalty;
+  std::optional<double> rotation_penalty;  ///< default beta * h^2
+};
+
+using Effect = std::variant<InertiaEffect, GravityEffect, SurfaceLoadEffect, LineLoadEffect,
+                            PointLoadEffect, DirichletEffect, ClampEffect>;
+
+/// Name used in YAML, logs, CSV columns and summary.json ("inertia", "gravity", ...).
+std::string effect_name(const Effect& e);
+
+// ----------------------------------------------------------------------------------------------
+
+/// `initial_state: {affine: [[3x3]], translate: [x,y,z]}` or `initial_state: {checkpoint: path}`.
+struct InitialState {
+  std::optional<std::array<Vec3, 3>> affine;  ///< x0 = A X + translate
+  Vec3 translate{0, 0, 0};
+  std::optional<std::filesystem::path> checkpoint;  ///< resolved path
+};
+
+struct TimeSpec {
+  double dt = 1.0;  ///< > 0
+  int steps = 1;    ///< >= 1
+};
+
+struct Probe {
+  std::string name;
+  Where where;  ///< must be a point selection
+};
+
+struct OutputSpec {
+  std::filesystem::path dir = "out";        ///< resolved relative to the working directory
+  int every = 1;                            ///< write frames every N steps (the last step always)
+  std::vector<std::string> formats{"xdmf", "obj", "csv"};  ///< subset of xdmf|obj|csv
+  int samples_per_face = 4;                 ///< limit-surface grid per face for xdmf/obj, 1..16
+  int checkpoint_every = 0;                 ///< 0: no checkpoints
+};
+
+/// `solver: {options_file: path, tolerance: 1e-7}` — PETSc options are the main knob.
+struct SolverSpec {
+  std::optional<std::filesystem::path> options_file;  ///< resolved path; command line wins
+};
+
+struct Scene {
+  std::filesystem::path file;  ///< the scene file as given
+  std::string name;            ///< file stem unless `name:` is given
+  GeometrySpec geometry;
+  MaterialSpec material;
+  std::vector<Effect> effects;
+  InitialState initial_state;
+  TimeSpec time;
+  std::vector<Probe> probes;
+  OutputSpec output;
+  SolverSpec solver;
+
+  bool has_inertia() const;
+};
+
+/// Reads and validates a scene file. Throws SceneError (see the header comment).
+Scene parse_scene(const std::filesystem::path& file);
+
+/// Parses a `where:` string form (`boundary(left)`, `corner(top-left)`, `point(0.5,0.5)`,
+/// `boundary`). Throws SceneError with `context` (file:line: key) prefixed to the message.
+Where parse_where_text(const std::string& text, const std::string& context);
+
+/// The scene format, for `mlshell --help`.
+const char* scene_format_help();
+
+}  // namespace mlshell

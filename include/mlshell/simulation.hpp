@@ -1,0 +1,85 @@
+// A scene run end to end: cage → subdivision level → distributed problem → time stepping with
+// a TAO solver → result files (HDF5/XDMF, OBJ, CSV, summary.json, checkpoints).
+//
+// Options (besides PETSc's own, e.g. -tao_monitor, -log_view):
+//   -mlshell_evaluate            print every enabled effect's energy and the gradient norm at
+//                                the initial state, write summary.json, and exit
+//   -mlshell_gauss_points <3>    Gauss points per direction on each element (2..6)
+//   -mlshell_output_dir <dir>    override the scene's output.dir
+//   -mlshell_steps <n>           override the scene's time.steps
+//   -mlshell_quiet               no per-step progress lines
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <petscvec.h>
+
+#include "mlshell/discretization.hpp"
+#include "mlshell/effect_builder.hpp"
+#include "mlshell/parallel_layout.hpp"
+#include "mlshell/scene.hpp"
+#include "mlshell/step_solver.hpp"
+#include "mlshell/subdivision_hierarchy.hpp"
+
+namespace mlshell {
+
+struct SimulationOptions {
+  bool evaluate_only = false;
+  int gauss_points = 3;
+  bool quiet = false;
+  static SimulationOptions from_petsc_options();
+};
+
+/// Exit status of a run: 0 converged, 3 a step's solver did not converge.
+constexpr int kExitSolverFailed = 3;
+
+class Simulation {
+ public:
+  Simulation(MPI_Comm comm, Scene scene, SimulationOptions options);
+  ~Simulation();
+  /// Runs the scene (or only evaluates it). Returns the exit status.
+  PetscErrorCode run(int* status);
+
+  const Discretization& discretization() const { return *disc_; }
+  LevelProblem& problem() { return *problem_; }
+  Vec displacement() const { return u_; }
+  /// Natural-order displacement on rank 0.
+  PetscErrorCode natural_displacement(std::vector<double>& u) const;
+
+ private:
+  struct Output;
+  PetscErrorCode set_initial_state();
+  PetscErrorCode evaluate(int* status);
+  PetscErrorCode step(int n, SolveReport& report);
+  PetscErrorCode write_frame(int n, double t, bool force);
+  PetscErrorCode write_summary(const std::string& status, const SolveReport* last);
+
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  Scene scene_;
+  SimulationOptions options_;
+  CageFrame frame_;
+  std::unique_ptr<SubdivisionHierarchy> hierarchy_;
+  std::unique_ptr<Discretization> disc_;
+  std::unique_ptr<ParallelLayout> layout_;
+  std::unique_ptr<LevelProblem> problem_;
+  std::unique_ptr<StepSolver> solver_;
+  std::unique_ptr<Output> output_;
+  Vec u_ = nullptr, v_ = nullptr, u_prev_ = nullptr;
+  int first_step_ = 0;
+  std::vector<SurfacePoint> probes_;
+  double wall_start_ = 0.0;
+  long total_iterations_ = 0;
+  bool all_converged_ = true;
+  int steps_done_ = 0;
+};
+
+/// Builds the level-0 cage with its ghost ring from the scene's geometry.
+QuadMesh build_cage(const GeometrySpec& geometry);
+
+/// 64-bit fingerprint of a discretization (point count and reference coordinates).
+std::uint64_t discretization_fingerprint(const Discretization& disc);
+
+}  // namespace mlshell

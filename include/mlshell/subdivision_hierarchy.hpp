@@ -1,0 +1,35 @@
+// Uniform Catmull–Clark refinement of a cage with ghost ring, trimmed to one ghost ring per level
+// (paper §5.1, §5.2.1, Fig. 5), and the subdivision matrices between neighbouring levels.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "mlshell/quad_mesh.hpp"
+
+namespace mlshell {
+
+/// Scalar subdivision matrix: row i of level l+1 holds the weights of level-l control points
+/// (q^{l+1} = S q^l, eq. 5.11, applied to each coordinate).
+using SubdivisionMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+class SubdivisionHierarchy {
+ public:
+  /// `cage` must carry its ghost ring (add_ghost_ring). Builds levels 0..refinements.
+  SubdivisionHierarchy(const QuadMesh& cage, int refinements);
+
+  int num_levels() const { return static_cast<int>(levels_.size()); }
+  /// Level l: its interior faces and one ring of ghost faces, control points at their
+  /// subdivided positions.
+  const QuadMesh& level(int l) const { return levels_[l]; }
+  const QuadMesh& finest() const { return levels_.back(); }
+  /// S_l^{l+1} between the kept control points of levels l and l+1.
+  const SubdivisionMatrix& subdivision(int l) const { return subdivision_[l]; }
+
+ private:
+  std::vector<QuadMesh> levels_;
+  std::vector<SubdivisionMatrix> subdivision_;
+};
+
+}  // namespace mlshell

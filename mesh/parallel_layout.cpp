@@ -1,0 +1,212 @@
+// METIS partition of the elements and the PETSc objects that move data between ranks.
+#include "mlshell/parallel_layout.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <set>
+#include <stdexcept>
+
+#include <metis.h>
+
+namespace mlshell {
+
+namespace {
+
+/// METIS k-way partition of the elements' dual graph (faces sharing an edge).
+std::vector<int> partition_elements(const Discretization& disc, int parts) {
+  const QuadMesh& mesh = disc.mesh();
+  std::vector<int> owner(mesh.num_faces(), 0);
+  if (parts == 1) return owner;
+  const auto& elements = disc.elements();
+  std::vector<int> index_of(mesh.num_faces(), -1);
+  for (size_t e = 0; e < elements.size(); ++e) index_of[elements[e]] = static_cast<int>(e);
+  const QuadAdjacency adj(mesh);
+  std::vector<idx_t> xadj{0}, adjncy;
+  for (int f : elements) {
+    for (int k = 0; k < 4; ++k) {
+      const int g = adj.across(f, k);
+      if (g >= 0 && index_of[g] >= 0) adjncy.push_back(index_of[g]);
+    }
+    xadj.push_back(static_cast<idx_t>(adjncy.size()));
+  }
+  idx_t n = static_cast<idx_t>(elements.size()), ncon = 1, nparts = parts, objval = 0;
+  std::vector<idx_t> part(n, 0);
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = 7;  // deterministic partitions
+  options[METIS_OPTION_NUMBERING] = 0;
+  if (n >= parts) {
+    const int status = METIS_PartGraphKway(&n, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr,
+                                           nullptr, &nparts, nullptr, nullptr, options, &objval,
+                                           part.data());
+    if (status != METIS_OK) throw std::runtime_error("METIS failed to partition the elements");
+  }
+  for (idx_t e = 0; e < n; ++e) owner[elements[e]] = static_cast<int>(part[e]);
+  return owner;
+}
+
+}  // namespace
+
+ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc)
+    : comm_(comm), disc_(disc) {
+  MPI_Comm_rank(comm, &rank_);
+  MPI_Comm_size(comm, &size_);
+  const int np = disc.num_points();
+  face_owner_ = partition_elements(disc, size_);  // identical on every rank (same input, seed)
+  std::vector<int> point_owner(np, size_);
+  std::vector<std::set<int>> stencils_of_rank_points;
+  std::vector<char> local(np, 0);
+  for (int f : disc.elements()) {
+    const int r = face_owner_[f];
+    for (int v : disc.stencil(f)) {
+      point_owner[v] = std::min(point_owner[v], r);
+      if (r == rank_) local[v] = 1;
+    }
+    if (r == rank_) local_elements_.push_back(f);
+  }
+  // PETSc numbering: rank by rank, natural order within a rank.
+  petsc_of_natural_.assign(np, -1);
+  int next = 0;
+  for (int r = 0; r < size_; ++r) {
+    if (r == rank_) first_owned_ = next;
+    for (int v = 0; v < np; ++v)
+      if (point_owner[v] == r) petsc_of_natural_[v] = next++;
+  }
+  if (next != np) throw std::logic_error("ParallelLayout: a control point is in no stencil");
+  for (int v = 0; v < np; ++v)
+    if (point_owner[v] == rank_) local_points_.push_back(v);
+  num_owned_ = static_cast<int>(local_points_.size());
+  for (int v = 0; v < np; ++v)
+    if (local[v] && point_owner[v] != rank_) local_points_.push_back(v);
+  local_of_natural_.assign(np, -1);
+  for (size_t i = 0; i < local_points_.size(); ++i) local_of_natural_[local_points_[i]] = static_cast<int>(i);
+
+  std::vector<PetscInt> blocks(local_points_.size());
+  for (size_t i = 0; i < local_points_.size(); ++i) blocks[i] = petsc_of_natural_[local_points_[i]];
+  PetscCallAbort(comm, ISLocalToGlobalMappingCreate(comm, 3, static_cast<PetscInt>(blocks.size()),
+                                                    blocks.data(), PETSC_COPY_VALUES, &l2g_));
+  PetscCallAbort(comm, VecCreateMPI(comm, 3 * num_owned_, PETSC_DETERMINE, &global_template_));
+  PetscCallAbort(comm, VecSetBlockSize(global_template_, 3));
+  PetscCallAbort(comm, VecCreateSeq(PETSC_COMM_SELF, 3 * num_local_points(), &local_work_));
+  IS from;
+  PetscCallAbort(comm, ISCreateBlock(PETSC_COMM_SELF, 3, static_cast<PetscInt>(blocks.size()),
+                                     blocks.data(), PETSC_COPY_VALUES, &from));
+  PetscCallAbort(comm, VecScatterCreate(global_template_, from, local_work_, nullptr, &to_local_));
+  PetscCallAbort(comm, ISDestroy(&from));
+  // Natural order on rank 0.
+  std::vector<PetscInt> natural_blocks;
+  if (rank_ == 0) natural_blocks.assign(petsc_of_natural_.begin(), petsc_of_natural_.end());
+  PetscCallAbort(comm, VecCreateSeq(PETSC_COMM_SELF, rank_ == 0 ? 3 * np : 0, &natural_work_));
+  IS nat;
+  PetscCallAbort(comm, ISCreateBlock(PETSC_COMM_SELF, 3, static_cast<PetscInt>(natural_blocks.size()),
+                                     natural_blocks.data(), PETSC_COPY_VALUES, &nat));
+  PetscCallAbort(comm, VecScatterCreate(global_template_, nat, natural_work_, nullptr, &to_natural_));
+  PetscCallAbort(comm, ISDestroy(&nat));
+}
+
+ParallelLayout::~ParallelLayout() {
+  ISLocalToGlobalMappingDestroy(&l2g_);
+  VecDestroy(&local_work_);
+  VecDestroy(&global_template_);
+  VecDestroy(&natural_work_);
+  VecScatterDestroy(&to_local_);
+  VecScatterDestroy(&to_natural_);
+}
+
+PetscErrorCode ParallelLayout::create_vector(Vec* v) const {
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(global_template_, v));
+  PetscCall(VecZeroEntries(*v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParallelLayout::create_matrix(Mat* A) const {
+  PetscFunctionBeginUser;
+  // Block rows owned here: count coupled blocks, on- and off-diagonal, over every element
+  // (any rank's) whose stencil contains the row.
+  const int np = disc_.num_points();
+  std::vector<std::vector<int>> coupled(num_owned_);
+  std::vector<int> owned_index(np, -1);
+  for (int i = 0; i < num_owned_; ++i) owned_index[local_points_[i]] = i;
+  for (int f : disc_.elements()) {
+    const auto st = disc_.stencil(f);
+    for (int v : st)
+      if (owned_index[v] >= 0)
+        for (int w : st) coupled[owned_index[v]].push_back(petsc_of_natural_[w]);
+  }
+  std::vector<PetscInt> dnnz(num_owned_), onnz(num_owned_);
+  for (int i = 0; i < num_owned_; ++i) {
+    auto& c = coupled[i];
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    for (int col : c) {
+      const bool diag = col >= first_owned_ && col < first_owned_ + num_owned_;
+      (diag ? dnnz[i] : onnz[i])++;
+    }
+  }
+  PetscCall(MatCreate(comm_, A));
+  PetscCall(MatSetSizes(*A, 3 * num_owned_, 3 * num_owned_, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(*A, MATAIJ));
+  PetscCall(MatSetBlockSize(*A, 3));
+  PetscCall(MatXAIJSetPreallocation(*A, 3, dnnz.data(), onnz.data(), nullptr, nullptr));
+  PetscCall(MatSetLocalToGlobalMapping(*A, l2g_, l2g_));
+  PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(MatSetOption(*A, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(*A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParallelLayout::to_local(Vec global, std::vector<double>& local) const {
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(to_local_, global, local_work_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_local_, global, local_work_, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* a;
+  PetscCall(VecGetArrayRead(local_work_, &a));
+  local.assign(a, a + 3 * num_local_points());
+  PetscCall(VecRestoreArrayRead(local_work_, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParallelLayout::add_to_global(const std::vector<double>& local, Vec global) const {
+  PetscFunctionBeginUser;
+  PetscScalar* a;
+  PetscCall(VecGetArray(local_work_, &a));
+  std::copy(local.begin(), local.end(), a);
+  PetscCall(VecRestoreArray(local_work_, &a));
+  PetscCall(VecScatterBegin(to_local_, local_work_, global, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(to_local_, local_work_, global, ADD_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParallelLayout::gather_natural(Vec global, std::vector<double>& natural) const {
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(to_natural_, global, natural_work_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_natural_, global, natural_work_, INSERT_VALUES, SCATTER_FORWARD));
+  natural.clear();
+  if (rank_ == 0) {
+    const PetscScalar* a;
+    PetscCall(VecGetArrayRead(natural_work_, &a));
+    natural.assign(a, a + 3 * disc_.num_points());
+    PetscCall(VecRestoreArrayRead(natural_work_, &a));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParallelLayout::scatter_natural(const std::vector<double>& natural, Vec global) const {
+  PetscFunctionBeginUser;
+  if (rank_ == 0) {
+    PetscCheck(natural.size() == static_cast<size_t>(3 * disc_.num_points()), PETSC_COMM_SELF,
+               PETSC_ERR_ARG_SIZ, "natural vector has %zu values, expected %d", natural.size(),
+               3 * disc_.num_points());
+    PetscScalar* a;
+    PetscCall(VecGetArray(natural_work_, &a));
+    std::copy(natural.begin(), natural.end(), a);
+    PetscCall(VecRestoreArray(natural_work_, &a));
+  }
+  PetscCall(VecZeroEntries(global));
+  PetscCall(VecScatterBegin(to_natural_, natural_work_, global, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(to_natural_, natural_work_, global, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell

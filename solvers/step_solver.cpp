@@ -1,0 +1,79 @@
+// TAO as the step solver (see step_solver.hpp for the defaults).
+#include "mlshell/step_solver.hpp"
+
+namespace mlshell {
+
+namespace {
+
+PetscErrorCode objective_and_gradient(Tao, Vec u, PetscReal* f, Vec g, void* ctx) {
+  return static_cast<LevelProblem*>(ctx)->objective(u, f, g);
+}
+
+PetscErrorCode objective_only(Tao, Vec u, PetscReal* f, void* ctx) {
+  return static_cast<LevelProblem*>(ctx)->objective(u, f, nullptr);
+}
+
+PetscErrorCode hessian(Tao, Vec u, Mat H, Mat, void* ctx) {
+  return static_cast<LevelProblem*>(ctx)->hessian(u, H);
+}
+
+/// Sets `name` to `value` unless the user already gave it (the command line wins).
+PetscErrorCode default_option(const char* name, const char* value) {
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &set));
+  if (!set) PetscCall(PetscOptionsSetValue(nullptr, name, value));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+StepSolver::StepSolver(LevelProblem& problem) : problem_(problem) {
+  MPI_Comm comm = problem.layout().comm();
+  PetscCallAbort(comm, default_option("-tao_type", "bntr"));
+  PetscCallAbort(comm, default_option("-tao_ksp_type", "stcg"));
+  PetscCallAbort(comm, default_option("-tao_pc_type", "lu"));
+  PetscCallAbort(comm, default_option("-tao_pc_factor_mat_solver_type", "mumps"));
+  PetscCallAbort(comm, default_option("-tao_gatol", "1e-7"));
+  PetscCallAbort(comm, default_option("-tao_gttol", "1e-10"));
+  PetscCallAbort(comm, default_option("-tao_grtol", "0"));
+  PetscCallAbort(comm, default_option("-tao_max_it", "1000"));
+  PetscCallAbort(comm, TaoCreate(comm, &tao_));
+  PetscCallAbort(comm, problem.create_matrix(&H_));
+  PetscCallAbort(comm, TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &problem_));
+  PetscCallAbort(comm, TaoSetObjective(tao_, objective_only, &problem_));
+  PetscCallAbort(comm, TaoSetHessian(tao_, H_, H_, hessian, &problem_));
+  PetscCallAbort(comm, TaoSetFromOptions(tao_));
+}
+
+StepSolver::~StepSolver() {
+  TaoDestroy(&tao_);
+  MatDestroy(&H_);
+}
+
+std::string StepSolver::type() const {
+  TaoType t;
+  TaoGetType(tao_, &t);
+  return t ? t : "";
+}
+
+PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
+  PetscFunctionBeginUser;
+  PetscCall(TaoSetSolution(tao_, u));
+  PetscCall(TaoSolve(tao_));
+  TaoConvergedReason reason;
+  PetscInt its;
+  PetscReal f, gnorm, cnorm, xdiff;
+  PetscCall(TaoGetSolutionStatus(tao_, &its, &f, &gnorm, &cnorm, &xdiff, &reason));
+  PetscInt lits = 0;
+  PetscCall(TaoGetLinearSolveIterations(tao_, &lits));
+  report.converged = reason > 0;
+  report.reason = TaoConvergedReasons[reason];
+  report.iterations = static_cast<int>(its);
+  report.linear_iterations = static_cast<int>(lits);
+  report.energy = f;
+  report.gradient_norm = gnorm;
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell

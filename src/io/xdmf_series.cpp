@@ -1,0 +1,201 @@
+// XDMF 3 time series backed by one HDF5 file per frame, written through PETSc's HDF5 viewer.
+//
+// The HDF5 viewer is created with the generic PetscViewerCreate/SetType/FileSetMode/
+// FileSetName sequence, which is exactly what PetscViewerHDF5Open does, because including
+// <petscviewerhdf5.h> needs HDF5's own headers on the include path and the build only gets
+// PETSc's flags from pkg-config. VecView/ISView dispatch to the HDF5 writers by viewer type.
+//
+// Dataset layouts (checked with the HDF5 C API against this PETSc build): a sequential Vec of
+// block size 3 becomes an N×3 H5T_IEEE_F64 dataset, an IS of block size 4 an M×4 dataset of the
+// native PetscInt type. No timestep is ever set on the viewer, so no extra time dimension is
+// added.
+#include <petscis.h>
+#include <petscvec.h>
+#include <petscviewer.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <system_error>
+#include <type_traits>
+
+#include "io_util.hpp"
+
+namespace mlshell {
+namespace {
+
+static_assert(std::is_same_v<PetscScalar, double>,
+              "XDMF output assumes a real double-precision PETSc build");
+
+// Throws OutputError naming the file when a PETSc call failed. The write functions return
+// void, so PetscCall (which returns the error code) cannot be used here.
+void check_petsc(PetscErrorCode ierr, const std::filesystem::path& file, const char* call) {
+  if (ierr == 0) return;
+  const char* text = nullptr;
+  PetscErrorMessage(ierr, &text, nullptr);
+  throw OutputError("cannot write '" + file.string() + "': " + call + " failed: " +
+                    (text ? text : "unknown PETSc error") + " (PETSc error " +
+                    std::to_string(static_cast<int>(ierr)) + ")");
+}
+
+// Owns the PETSc objects of one frame so they are released on every exit path; destroying the
+// viewer is what closes the HDF5 file, so the writer destroys it explicitly (and checks it)
+// before renaming.
+struct FrameObjects {
+  PetscViewer viewer = nullptr;
+  Vec geometry = nullptr, displacement = nullptr;
+  IS topology = nullptr;
+  ~FrameObjects() {
+    if (geometry) VecDestroy(&geometry);
+    if (displacement) VecDestroy(&displacement);
+    if (topology) ISDestroy(&topology);
+    if (viewer) PetscViewerDestroy(&viewer);
+  }
+};
+
+PetscInt to_petsc_size(std::size_t n, const std::filesystem::path& file) {
+  if (n > static_cast<std::size_t>(std::numeric_limits<PetscInt>::max()))
+    throw OutputError("cannot write '" + file.string() + "': " + std::to_string(n) +
+                      " values exceed the PetscInt range of this PETSc build");
+  return static_cast<PetscInt>(n);
+}
+
+void write_vector(PetscViewer viewer, Vec& v, const std::vector<double>& data, const char* name,
+                  const std::filesystem::path& file) {
+  // The Vec borrows the caller's array (no copy); block size 3 makes the dataset N×3.
+  check_petsc(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, to_petsc_size(data.size(), file),
+                                    data.data(), &v),
+              file, "VecCreateSeqWithArray");
+  check_petsc(PetscObjectSetName(reinterpret_cast<PetscObject>(v), name), file,
+              "PetscObjectSetName");
+  check_petsc(VecView(v, viewer), file, "VecView");
+}
+
+void write_frame_h5(const std::filesystem::path& file, const SurfaceSample& s) {
+  io_detail::create_parent_folder(file);
+  const std::filesystem::path tmp = io_detail::temporary_path_for(file);
+  try {
+    FrameObjects o;
+    check_petsc(PetscViewerCreate(PETSC_COMM_SELF, &o.viewer), file, "PetscViewerCreate");
+    check_petsc(PetscViewerSetType(o.viewer, PETSCVIEWERHDF5), file, "PetscViewerSetType");
+    check_petsc(PetscViewerFileSetMode(o.viewer, FILE_MODE_WRITE), file,
+                "PetscViewerFileSetMode");
+    check_petsc(PetscViewerFileSetName(o.viewer, tmp.c_str()), file, "PetscViewerFileSetName");
+
+    write_vector(o.viewer, o.geometry, s.points, "geometry", file);
+
+    // Indices are PetscInt in the file (an IS cannot hold anything else); check_surface has
+    // bounded them by the point count, which to_petsc_size has bounded by PetscInt's range.
+    std::vector<PetscInt> idx(s.quads.begin(), s.quads.end());
+    check_petsc(ISCreateGeneral(PETSC_COMM_SELF, to_petsc_size(idx.size(), file), idx.data(),
+                                PETSC_USE_POINTER, &o.topology),
+                file, "ISCreateGeneral");
+    check_petsc(ISSetBlockSize(o.topology, 4), file, "ISSetBlockSize");
+    check_petsc(PetscObjectSetName(reinterpret_cast<PetscObject>(o.topology), "topology"), file,
+                "PetscObjectSetName");
+    check_petsc(ISView(o.topology, o.viewer), file, "ISView");
+
+    if (!s.displacement.empty())
+      write_vector(o.viewer, o.displacement, s.displacement, "displacement", file);
+
+    check_petsc(PetscViewerDestroy(&o.viewer), file, "PetscViewerDestroy (closing the file)");
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
+  io_detail::commit_temporary(tmp, file);
+}
+
+// Escapes the characters with a meaning in XML text and attribute values.
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string data_item(std::int64_t rows, int cols, const char* number_type, std::size_t precision,
+                      const std::string& h5, const char* dataset) {
+  return "<DataItem Dimensions=\"" + std::to_string(rows) + " " + std::to_string(cols) +
+         "\" NumberType=\"" + number_type + "\" Precision=\"" + std::to_string(precision) +
+         "\" Format=\"HDF\">" + xml_escape(h5) + ":/" + dataset + "</DataItem>";
+}
+
+}  // namespace
+
+XdmfSeries::XdmfSeries(std::filesystem::path dir, std::string stem)
+    : dir_(std::move(dir)), stem_(std::move(stem)) {
+  if (stem_.empty() || stem_.find('/') != std::string::npos)
+    throw std::invalid_argument("XdmfSeries: the stem must be a non-empty file name, got '" +
+                                stem_ + "'");
+  xdmf_ = dir_ / (stem_ + ".xdmf");
+}
+
+XdmfSeries::~XdmfSeries() = default;
+
+void XdmfSeries::add_frame(int step, double time, const SurfaceSample& surface) {
+  io_detail::check_surface(surface, "XdmfSeries::add_frame");
+  if (step < 0) throw std::invalid_argument("XdmfSeries::add_frame: negative step");
+  // HDF5 datasets of zero extent are not worth supporting: a frame without points is a bug.
+  if (surface.points.empty() || surface.quads.empty())
+    throw std::invalid_argument("XdmfSeries::add_frame: the surface has no points or no quads");
+
+  char name[32];
+  std::snprintf(name, sizeof name, "_%06d.h5", step);
+  const std::string h5 = stem_ + name;
+  // The HDF5 file is complete (renamed into place) before the XDMF that lists it is rewritten.
+  write_frame_h5(dir_ / h5, surface);
+
+  Frame f{step, time, h5, static_cast<std::int64_t>(surface.points.size() / 3),
+          static_cast<std::int64_t>(surface.quads.size() / 4), !surface.displacement.empty()};
+  // A restarted run may repeat a step: its new file replaced the old one, so replace the entry.
+  auto same = std::find_if(frames_.begin(), frames_.end(),
+                           [&](const Frame& g) { return g.step == step; });
+  if (same != frames_.end()) *same = f;
+  else frames_.push_back(f);
+
+  std::string x;
+  x += "<?xml version=\"1.0\" ?>\n";
+  x += "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n";
+  x += "<Xdmf Version=\"3.0\">\n";
+  x += "  <Domain>\n";
+  x += "    <Grid Name=\"" + xml_escape(stem_) +
+       "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const Frame& g : frames_) {
+    char grid[32];
+    std::snprintf(grid, sizeof grid, "step_%06d", g.step);
+    x += "      <Grid Name=\"" + std::string(grid) + "\" GridType=\"Uniform\">\n";
+    x += "        <Time Value=\"" + io_detail::format_double(g.time) + "\"/>\n";
+    x += "        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" +
+         std::to_string(g.nquads) + "\">\n";
+    x += "          " + data_item(g.nquads, 4, "Int", sizeof(PetscInt), g.h5, "topology") + "\n";
+    x += "        </Topology>\n";
+    x += "        <Geometry GeometryType=\"XYZ\">\n";
+    x += "          " + data_item(g.npoints, 3, "Float", sizeof(double), g.h5, "geometry") + "\n";
+    x += "        </Geometry>\n";
+    if (g.displacement) {
+      x += "        <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n";
+      x += "          " + data_item(g.npoints, 3, "Float", sizeof(double), g.h5, "displacement") +
+           "\n";
+      x += "        </Attribute>\n";
+    }
+    x += "      </Grid>\n";
+  }
+  x += "    </Grid>\n";
+  x += "  </Domain>\n";
+  x += "</Xdmf>\n";
+  write_file_atomic(xdmf_, x);
+}
+
+}  // namespace mlshell

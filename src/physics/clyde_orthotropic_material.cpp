@@ -1,0 +1,50 @@
+// Paper eq. (3.3)–(3.4): the orthotropic woven-cloth energy density.
+#include <cmath>
+
+#include "mlshell/material.hpp"
+
+namespace mlshell {
+
+void ClydeOrthotropicMaterial::phi(int j, double u, double& f, double& df, double& ddf) const {
+  // φ(u) = Σ μ/α ((1+u)^α − 1), φ' = Σ μ (1+u)^(α−1), φ'' = Σ μ (α−1) (1+u)^(α−2).
+  const double l = std::log1p(u);
+  f = df = ddf = 0.0;
+  const auto& mu = p_.mu[j];
+  const auto& alpha = p_.alpha[j];
+  for (size_t i = 0; i < mu.size(); ++i) {
+    const double a = alpha[i];
+    f += mu[i] / a * std::expm1(a * l);
+    const double p1 = std::exp((a - 1.0) * l);
+    df += mu[i] * p1;
+    ddf += mu[i] * (a - 1.0) * p1 / (1.0 + u);
+  }
+}
+
+double ClydeOrthotropicMaterial::energy_density(const Strain3& e, Eigen::Vector3d* grad,
+                                                Eigen::Matrix3d* hess) const {
+  const double e11 = e[0], e22 = e[1], e12 = e[2];
+  const auto& k = p_.k;
+  // Arguments u_j and their derivatives in e: u1 = e11², u2 = e11 e22, u3 = e22², u4 = e12².
+  double f[4], d[4], dd[4];
+  phi(0, e11 * e11, f[0], d[0], dd[0]);
+  phi(1, e11 * e22, f[1], d[1], dd[1]);
+  phi(2, e22 * e22, f[2], d[2], dd[2]);
+  phi(3, e12 * e12, f[3], d[3], dd[3]);
+  const double c[4] = {0.5 * k[0], k[1], 0.5 * k[2], k[3]};
+  if (grad) {
+    (*grad)[0] = c[0] * d[0] * 2.0 * e11 + c[1] * d[1] * e22;
+    (*grad)[1] = c[2] * d[2] * 2.0 * e22 + c[1] * d[1] * e11;
+    (*grad)[2] = c[3] * d[3] * 2.0 * e12;
+  }
+  if (hess) {
+    Eigen::Matrix3d& H = *hess;
+    H.setZero();
+    H(0, 0) = c[0] * (dd[0] * 4.0 * e11 * e11 + 2.0 * d[0]) + c[1] * dd[1] * e22 * e22;
+    H(1, 1) = c[2] * (dd[2] * 4.0 * e22 * e22 + 2.0 * d[2]) + c[1] * dd[1] * e11 * e11;
+    H(0, 1) = H(1, 0) = c[1] * (dd[1] * e11 * e22 + d[1]);
+    H(2, 2) = c[3] * (dd[3] * 4.0 * e12 * e12 + 2.0 * d[3]);
+  }
+  return c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3];
+}
+
+}  // namespace mlshell

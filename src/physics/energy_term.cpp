@@ -1,0 +1,62 @@
+// Shared pieces of all energy terms: log events, local assembly.
+#include "mlshell/energy_term.hpp"
+
+#include <map>
+#include <stdexcept>
+
+namespace mlshell {
+
+namespace {
+
+/// All of mlshell's log events are registered here, one per effect name, so `-log_view` shows
+/// what each effect costs.
+PetscLogEvent effect_log_event(const std::string& name) {
+  static std::map<std::string, PetscLogEvent> events;
+  static PetscClassId classid = 0;
+  if (!classid) PetscClassIdRegister("mlshell", &classid);
+  auto it = events.find(name);
+  if (it != events.end()) return it->second;
+  PetscLogEvent e;
+  PetscLogEventRegister(("Effect:" + name).c_str(), classid, &e);
+  events[name] = e;
+  return e;
+}
+
+}  // namespace
+
+EnergyTerm::EnergyTerm(std::string name) : name_(std::move(name)), event_(effect_log_event(name_)) {}
+
+std::vector<PetscInt> to_local_nodes(const ParallelLayout& layout, const int* nodes, int n) {
+  std::vector<PetscInt> local(n);
+  for (int i = 0; i < n; ++i) {
+    local[i] = layout.local_of(nodes[i]);
+    if (local[i] < 0) throw std::logic_error("element node is not local to its rank");
+  }
+  return local;
+}
+
+void add_local_gradient(const std::vector<PetscInt>& nodes, const double* g,
+                        std::vector<double>& grad) {
+  for (size_t i = 0; i < nodes.size(); ++i)
+    for (int c = 0; c < 3; ++c) grad[3 * nodes[i] + c] += g[3 * i + c];
+}
+
+PetscErrorCode add_local_hessian(Mat H, const std::vector<PetscInt>& nodes, const double* values) {
+  PetscFunctionBeginUser;
+  const PetscInt n = static_cast<PetscInt>(nodes.size());
+  PetscCall(MatSetValuesBlockedLocal(H, n, nodes.data(), n, nodes.data(), values, ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
+double reference_area(const ElementBasis& b, int g, const std::vector<Point3>& X) {
+  Point3 xu = Point3::Zero(), xv = Point3::Zero();
+  const double* du = b.slot(g, kDu);
+  const double* dv = b.slot(g, kDv);
+  for (int i = 0; i < b.size; ++i) {
+    xu += du[i] * X[b.nodes[i]];
+    xv += dv[i] * X[b.nodes[i]];
+  }
+  return xu.cross(xv).norm();
+}
+
+}  // namespace mlshell

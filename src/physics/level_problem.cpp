@@ -1,0 +1,69 @@
+// Sum of a scene's energy terms on distributed vectors.
+#include "mlshell/level_problem.hpp"
+
+#include <cmath>
+
+namespace mlshell {
+
+LevelProblem::LevelProblem(const ParallelLayout& layout) : layout_(layout) {}
+
+void LevelProblem::add_term(std::unique_ptr<EnergyTerm> term) { terms_.push_back(std::move(term)); }
+
+void LevelProblem::set_time(double time) {
+  for (auto& t : terms_) t->set_time(time);
+}
+
+PetscErrorCode LevelProblem::objective(Vec u, PetscReal* f, Vec g) {
+  PetscFunctionBeginUser;
+  ++objective_evaluations_;
+  PetscCall(layout_.to_local(u, u_local_));
+  if (g) g_local_.assign(u_local_.size(), 0.0);
+  CompensatedSum local;
+  for (const auto& t : terms_) {
+    PetscCall(PetscLogEventBegin(t->log_event(), 0, 0, 0, 0));
+    PetscCall(t->add(u_local_, local, g ? &g_local_ : nullptr, nullptr));
+    PetscCall(PetscLogEventEnd(t->log_event(), 0, 0, 0, 0));
+  }
+  // Sum the ranks' compensated partial sums (value and correction separately).
+  double mine = local.value(), total = 0.0;
+  PetscCallMPI(MPI_Allreduce(&mine, &total, 1, MPI_DOUBLE, MPI_SUM, layout_.comm()));
+  *f = std::isfinite(total) ? total : PETSC_INFINITY;
+  if (g) {
+    PetscCall(VecZeroEntries(g));
+    PetscCall(layout_.add_to_global(g_local_, g));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::hessian(Vec u, Mat H) {
+  PetscFunctionBeginUser;
+  ++hessian_evaluations_;
+  PetscCall(layout_.to_local(u, u_local_));
+  PetscCall(MatZeroEntries(H));
+  CompensatedSum ignored;
+  for (const auto& t : terms_) {
+    PetscCall(PetscLogEventBegin(t->log_event(), 0, 0, 0, 0));
+    PetscCall(t->add(u_local_, ignored, nullptr, H));
+    PetscCall(PetscLogEventEnd(t->log_event(), 0, 0, 0, 0));
+  }
+  PetscCall(MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::term_energies(Vec u, std::vector<double>& energies) {
+  PetscFunctionBeginUser;
+  PetscCall(layout_.to_local(u, u_local_));
+  std::vector<double> mine;
+  for (const auto& t : terms_) {
+    CompensatedSum s;
+    PetscCall(t->add(u_local_, s, nullptr, nullptr));
+    mine.push_back(s.value());
+  }
+  energies.assign(mine.size(), 0.0);
+  PetscCallMPI(MPI_Allreduce(mine.data(), energies.data(), static_cast<int>(mine.size()),
+                             MPI_DOUBLE, MPI_SUM, layout_.comm()));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell

@@ -1,0 +1,180 @@
+// The `effects:` list: each item is a bare name (`inertia`, `gravity`) or a single-key map
+// `{name: parameters}`. Only the effects listed here are built by the simulation.
+#include <algorithm>
+#include <array>
+#include <tuple>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "scene_sections.hpp"
+
+namespace mlshell::scene_reading {
+namespace {
+
+constexpr std::string_view kVector = "[x, y, z]";
+
+bool optional_ramp(const Field& params) {
+  const std::optional<Field> ramp = params.find("ramp");
+  return ramp ? ramp->boolean() : false;
+}
+
+std::optional<double> optional_positive(const Field& params, std::string_view key) {
+  const std::optional<Field> value = params.find(key);
+  return value ? std::optional<double>(value->positive_number()) : std::nullopt;
+}
+
+/// `motion: {translate: [dx, dy, dz], over: [t0, t1]}`
+Motion read_motion(const Field& field) {
+  field.expect_keys({"translate", "over"});
+  Motion motion;
+  motion.translate = field.require("translate", "[dx, dy, dz] in m").numbers<3>("[dx, dy, dz]");
+  const Field over = field.require("over", "[t0, t1] in s");
+  motion.over = over.numbers<2>("[t0, t1]");
+  over.check(motion.over[0] <= motion.over[1], "t0 must be <= t1");
+  return motion;
+}
+
+std::optional<Motion> optional_motion(const Field& params) {
+  const std::optional<Field> motion = params.find("motion");
+  return motion ? std::optional<Motion>(read_motion(*motion)) : std::nullopt;
+}
+
+/// `components: [x, z]` → which displacement components a Dirichlet condition holds.
+std::array<bool, 3> read_components(const Field& field) {
+  const std::vector<Field> items = field.items();
+  field.check(!items.empty(), "must name at least one component", "a list of x, y, z");
+  std::array<bool, 3> held{false, false, false};
+  for (const Field& item : items) {
+    const std::string name = item.string();
+    const std::size_t axis = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : 3;
+    item.check(axis < 3, "unknown component", "x, y or z");
+    item.check(!held[axis], "component given twice");
+    held[axis] = true;
+  }
+  return held;
+}
+
+// One reader per effect: `params` is the value of `{name: params}` (null for a bare name).
+
+Effect read_inertia(const Field& params, const GeometrySpec&) {
+  params.check(params.is_null() || (params.is_map() && params.entries().empty()),
+               "inertia takes no parameters", "a bare `- inertia`");
+  return InertiaEffect{};
+}
+
+Effect read_gravity(const Field& params, const GeometrySpec&) {
+  if (params.is_null()) return GravityEffect{};
+  return GravityEffect{params.numbers<3>("[gx, gy, gz] in m/s², e.g. [0, 0, -9.81]")};
+}
+
+Effect read_surface_load(const Field& params, const GeometrySpec&) {
+  params.expect_keys({"force_per_area", "ramp"});
+  return SurfaceLoadEffect{
+      .force_per_area = params.require("force_per_area", "[fx, fy, fz] in N/m²").numbers<3>(kVector),
+      .ramp = optional_ramp(params)};
+}
+
+Effect read_line_load(const Field& params, const GeometrySpec& geometry) {
+  params.expect_keys({"where", "force_per_length", "ramp"});
+  return LineLoadEffect{
+      .where = read_where(params.require("where", "a curve selection"), SelectionUse::Curve,
+                          "line_load", geometry),
+      .force_per_length =
+          params.require("force_per_length", "[fx, fy, fz] in N/m").numbers<3>(kVector),
+      .ramp = optional_ramp(params)};
+}
+
+Effect read_point_load(const Field& params, const GeometrySpec& geometry) {
+  params.expect_keys({"where", "force", "ramp"});
+  return PointLoadEffect{
+      .where = read_where(params.require("where", "a point selection"), SelectionUse::Point,
+                          "point_load", geometry),
+      .force = params.require("force", "[fx, fy, fz] in N").numbers<3>(kVector),
+      .ramp = optional_ramp(params)};
+}
+
+Effect read_dirichlet(const Field& params, const GeometrySpec& geometry) {
+  params.expect_keys({"where", "components", "motion", "sigma", "penalty"});
+  DirichletEffect effect;
+  effect.where = read_where(params.require("where", "a selection"), SelectionUse::CurveOrPoint,
+                            "dirichlet", geometry);
+  if (const std::optional<Field> components = params.find("components")) {
+    effect.components = read_components(*components);
+  }
+  effect.motion = optional_motion(params);
+  effect.sigma = optional_positive(params, "sigma").value_or(effect.sigma);
+  effect.penalty = optional_positive(params, "penalty");
+  return effect;
+}
+
+Effect read_clamp(const Field& params, const GeometrySpec& geometry) {
+  params.expect_keys({"where", "motion", "sigma", "penalty", "rotation_penalty"});
+  ClampEffect effect;
+  effect.where = read_where(params.require("where", "a curve selection"), SelectionUse::Curve,
+                            "clamp", geometry);
+  effect.motion = optional_motion(params);
+  effect.sigma = optional_positive(params, "sigma").value_or(effect.sigma);
+  effect.penalty = optional_positive(params, "penalty");
+  effect.rotation_penalty = optional_positive(params, "rotation_penalty");
+  return effect;
+}
+
+/// How to read each effect, in the order of kEffectNames (and of the Effect variant).
+struct EffectReader {
+  Effect (*read)(const Field& params, const GeometrySpec& geometry);
+  bool once;  ///< may appear at most once in a scene
+};
+
+constexpr std::array<EffectReader, kEffectNames.size()> kEffectReaders{{
+    {read_inertia, true},
+    {read_gravity, true},
+    {read_surface_load, false},
+    {read_line_load, false},
+    {read_point_load, false},
+    {read_dirichlet, false},
+    {read_clamp, false},
+}};
+
+std::string known_effects() {
+  std::string list;
+  for (std::string_view name : kEffectNames) list += (list.empty() ? "" : ", ") + std::string(name);
+  return list;
+}
+
+}  // namespace
+
+std::vector<Effect> read_effects(const Field& effects, const GeometrySpec& geometry) {
+  std::vector<Effect> out;
+  if (effects.is_null()) return out;  // `effects:` with nothing: only the elastic energy
+  std::array<int, kEffectNames.size()> first_line{};  // line of the first use, 0 if none
+  for (const Field& item : effects.items()) {
+    // `- inertia` names the effect in the item itself; `- gravity: [..]` in its only key.
+    std::string name;
+    std::optional<Field> params;
+    if (item.is_scalar()) {
+      name = item.string();
+      params = item.without_value(name);
+    } else {
+      item.check(item.is_map() && item.entries().size() == 1,
+                 "an effect is a name or a single-key map {name: parameters}",
+                 "e.g. `- inertia` or `- gravity: [0, 0, -9.81]`");
+      std::tie(name, params) = item.entries().front();
+    }
+
+    const auto known = std::find(kEffectNames.begin(), kEffectNames.end(), name);
+    if (known == kEffectNames.end()) {
+      item.fail("unknown effect '" + name + "'", "one of " + known_effects());
+    }
+    const auto index = static_cast<std::size_t>(known - kEffectNames.begin());
+    int& first = first_line[index];
+    if (kEffectReaders[index].once && first != 0) {
+      item.fail(name + " may appear only once (first given at line " + std::to_string(first) + ")");
+    }
+    if (first == 0) first = item.line();
+    out.push_back(kEffectReaders[index].read(*params, geometry));
+  }
+  return out;
+}
+
+}  // namespace mlshell::scene_reading

@@ -1,0 +1,107 @@
+// The `geometry:` section: the cage (a generated rectangle or L-shape, or an OBJ file) and the
+// number of uniform Catmull–Clark refinements.
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "scene_sections.hpp"
+
+namespace mlshell::scene_reading {
+namespace {
+
+// Generous bound that keeps every face and vertex count of a generated cage within int.
+constexpr int kMaxFacesPerDirection = 100000;
+
+std::string format_number(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
+std::array<double, 2> read_size(const Field& field) {
+  const std::vector<Field> items = field.items(2, "[width, height] in m");
+  return {items[0].positive_number(), items[1].positive_number()};
+}
+
+std::array<int, 2> read_faces(const Field& field) {
+  const std::vector<Field> items = field.items(2, "[nx, ny]");
+  return {items[0].integer_in(1, kMaxFacesPerDirection),
+          items[1].integer_in(1, kMaxFacesPerDirection)};
+}
+
+/// Why `cut` cannot be cut from a side of length `size` split into `faces` faces, or "" if it can:
+/// it must lie in (0, size) and be a whole number of faces (within 1e-9), leaving at least one.
+std::string cut_problem(double cut, double size, int faces) {
+  const double face = size / faces;
+  if (!(cut > 0.0 && cut < size)) return "must be in (0, " + format_number(size) + ")";
+  const double cut_faces = cut / face;
+  const double whole = std::round(cut_faces);
+  if (std::abs(cut_faces - whole) > 1e-9) {
+    return "must be a whole number of faces: the face size is " + format_number(face) +
+           ", so the cut spans " + format_number(cut_faces) + " faces";
+  }
+  if (whole < 1.0 || whole > faces - 1) {
+    return "must leave at least one face on each side of the cut (" + std::to_string(faces) +
+           " faces of " + format_number(face) + ")";
+  }
+  return "";
+}
+
+LShapeCage read_l_shape(const Field& cage) {
+  cage.expect_keys({"generator", "size", "faces", "cut", "origin"});
+  LShapeCage l_shape;
+  if (const auto size = cage.find("size")) l_shape.size = read_size(*size);
+  if (const auto faces = cage.find("faces")) l_shape.faces = read_faces(*faces);
+  if (const auto origin = cage.find("origin")) l_shape.origin = origin->numbers<2>("[x, y] in m");
+
+  const std::optional<Field> cut = cage.find("cut");
+  if (cut) l_shape.cut = cut->numbers<2>("[cx, cy] in m");
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string problem = cut_problem(l_shape.cut[i], l_shape.size[i], l_shape.faces[i]);
+    if (problem.empty()) continue;
+    if (cut) cut->items()[i].fail(problem);
+    // Only the default cut is left to blame: say so, so the user knows to give one.
+    cage.fail("cut[" + std::to_string(i) + "] (default " + format_number(l_shape.cut[i]) + ") " +
+              problem + "; give `cut: [cx, cy]`");
+  }
+  return l_shape;
+}
+
+RectangleCage read_rectangle(const Field& cage) {
+  cage.expect_keys({"generator", "size", "faces", "origin"});
+  RectangleCage rectangle;
+  if (const auto size = cage.find("size")) rectangle.size = read_size(*size);
+  if (const auto faces = cage.find("faces")) rectangle.faces = read_faces(*faces);
+  if (const auto origin = cage.find("origin")) rectangle.origin = origin->numbers<2>("[x, y] in m");
+  return rectangle;
+}
+
+decltype(GeometrySpec::cage) read_cage(const Field& cage, const std::filesystem::path& scene_dir) {
+  const std::optional<Field> obj = cage.find("obj");
+  const std::optional<Field> generator = cage.find("generator");
+  if (obj) {
+    cage.expect_keys({"obj"});
+    return ObjCage{read_existing_path(*obj, scene_dir)};
+  }
+  if (!generator) {
+    cage.fail("a cage needs `generator` or `obj`",
+              "{generator: rectangle | l-shape, ...} or {obj: path/to/cage.obj}");
+  }
+  const std::string kind = generator->string();
+  if (kind == "rectangle") return read_rectangle(cage);
+  if (kind == "l-shape") return read_l_shape(cage);
+  generator->fail("unknown generator", "rectangle or l-shape");
+}
+
+}  // namespace
+
+GeometrySpec read_geometry(const Field& geometry, const std::filesystem::path& scene_dir) {
+  geometry.expect_keys({"cage", "refine"});
+  GeometrySpec spec;
+  spec.cage = read_cage(geometry.require("cage", "{generator: rectangle, ...} or {obj: path}"),
+                        scene_dir);
+  if (const auto refine = geometry.find("refine")) spec.refine = refine->integer_in(0, 8);
+  return spec;
+}
+
+}  // namespace mlshell::scene_reading

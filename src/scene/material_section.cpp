@@ -1,0 +1,113 @@
+// The `material:` section: the orthotropic woven-cloth model of the paper's eq. (3.3)-(3.4)
+// (`clyde-orthotropic`, from a preset and/or explicit k, mu, alpha) or isotropic St. Venant-Kirchhoff.
+#include <cmath>
+#include <string>
+
+#include "scene_sections.hpp"
+
+namespace mlshell::scene_reading {
+namespace {
+
+/// `mu:` or `alpha:`: four non-empty lists of numbers, one per phi_j. An alpha of 0 would make
+/// its term (u+1)^alpha - 1 vanish, so alpha entries must be nonzero.
+std::array<std::vector<double>, 4> read_phi_rows(const Field& field, bool nonzero) {
+  std::array<std::vector<double>, 4> rows;
+  const std::vector<Field> items = field.items(4, "four lists, one per phi_j: [[...], [...], [...], [...]]");
+  for (std::size_t j = 0; j < 4; ++j) {
+    const std::vector<Field> entries = items[j].items();
+    items[j].check(!entries.empty(), "must have at least one entry", "a list of numbers");
+    for (const Field& entry : entries) {
+      const double value = entry.number();
+      if (nonzero) entry.check(value != 0.0, "must be nonzero");
+      rows[j].push_back(value);
+    }
+  }
+  return rows;
+}
+
+/// With a preset every parameter is optional (it overrides the preset); without one it is required.
+std::optional<Field> find_or_require(const Field& material, std::string_view key,
+                                     std::string_view expected, bool has_preset) {
+  if (has_preset) return material.find(key);
+  return material.require(key, expected);
+}
+
+ClydeMaterial read_clyde(const Field& material, std::string& preset) {
+  ClydeMaterial clyde;
+  if (const auto name = material.find("preset")) {
+    preset = name->string();
+    name->check(preset == "denim", "unknown preset", "denim");
+    clyde = denim_preset();
+  }
+  const bool has_preset = !preset.empty();
+
+  if (const auto k = find_or_require(material, "k", "[k1, k2, k3, k4] in Pa", has_preset)) {
+    const std::vector<Field> items = k->items(4, "[k1, k2, k3, k4] in Pa");
+    for (std::size_t j = 0; j < 4; ++j) clyde.k[j] = items[j].positive_number();
+  }
+  const auto mu = find_or_require(material, "mu", "[[mu_11, ...], ..., [mu_41, ...]]", has_preset);
+  if (mu) clyde.mu = read_phi_rows(*mu, false);
+  const auto alpha =
+      find_or_require(material, "alpha", "[[alpha_11, ...], ..., [alpha_41, ...]]", has_preset);
+  if (alpha) clyde.alpha = read_phi_rows(*alpha, true);
+
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (clyde.mu[j].size() == clyde.alpha[j].size()) continue;
+    // Blame what the user wrote: alpha if given, else mu (the other one comes from the preset).
+    const Field& given = alpha ? *alpha : *mu;
+    given.items()[j].fail("phi_" + std::to_string(j + 1) + " has " +
+                          std::to_string(clyde.mu[j].size()) + " mu and " +
+                          std::to_string(clyde.alpha[j].size()) +
+                          " alpha entries; they must have the same number");
+  }
+  return clyde;
+}
+
+SvkMaterial read_svk(const Field& material) {
+  SvkMaterial svk;
+  svk.youngs_modulus = material.require("youngs_modulus", "a number > 0, in Pa").positive_number();
+  const Field poisson = material.require("poisson_ratio", "a number in (-1, 0.5)");
+  svk.poisson_ratio = poisson.number();
+  poisson.check(svk.poisson_ratio > -1.0 && svk.poisson_ratio < 0.5, "must be in (-1, 0.5)");
+  return svk;
+}
+
+}  // namespace
+
+MaterialSpec read_material(const Field& material) {
+  const Field model = material.require("model", "clyde-orthotropic or isotropic-svk");
+  const std::string model_name = model.string();
+  MaterialSpec spec;
+  if (model_name == "clyde-orthotropic") {
+    material.expect_keys({"model", "preset", "thickness", "density", "warp", "thickness_points", "k",
+                          "mu", "alpha"});
+    spec.model = read_clyde(material, spec.preset);
+  } else if (model_name == "isotropic-svk") {
+    material.expect_keys(
+        {"model", "youngs_modulus", "poisson_ratio", "thickness", "density", "thickness_points"});
+    spec.model = read_svk(material);
+  } else {
+    model.fail("unknown material model", "clyde-orthotropic or isotropic-svk");
+  }
+
+  const bool denim = spec.preset == "denim";
+  const auto thickness = find_or_require(material, "thickness", "a number > 0, in m", denim);
+  spec.thickness = thickness ? thickness->positive_number() : kDenimThickness;
+  const auto density = find_or_require(material, "density", "a number >= 0, in kg/m²", denim);
+  spec.density = kDenimDensity;
+  if (density) {
+    spec.density = density->number();
+    density->check(spec.density >= 0.0, "must be >= 0");
+  }
+  if (const auto warp = material.find("warp")) {
+    spec.warp = warp->numbers<3>("[x, y, z], the warp direction");
+    warp->check(std::hypot(spec.warp[0], spec.warp[1], spec.warp[2]) > 0.0,
+                "must not be the zero vector");
+  }
+  if (const auto points = material.find("thickness_points")) {
+    spec.thickness_points = points->integer_in(1, 8);
+  }
+  return spec;
+}
+
+}  // namespace mlshell::scene_reading

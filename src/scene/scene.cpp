@@ -1,0 +1,200 @@
+// parse_scene(): loads a scene file and validates it section by section (the sections' readers
+// live beside this file), plus the small pieces of scene.hpp that act on a parsed Scene.
+#include "mlshell/scene.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "scene_sections.hpp"
+
+namespace mlshell {
+namespace scene_reading {
+
+namespace fs = std::filesystem;
+
+std::filesystem::path read_existing_path(const Field& field, const fs::path& scene_dir) {
+  const fs::path written = field.string();
+  const fs::path resolved = (written.is_absolute() ? written : scene_dir / written).lexically_normal();
+  std::error_code error;
+  if (!fs::exists(resolved, error)) {
+    field.fail("file not found: " + resolved.string(), "a path relative to the scene file's folder");
+  }
+  return resolved;
+}
+
+namespace {
+
+std::string line_of(const std::string& content, int index) {
+  std::istringstream lines(content);
+  std::string line;
+  for (int i = 0; i <= index && std::getline(lines, line); ++i) {
+  }
+  return line;
+}
+
+/// The scene file's single YAML document; yaml-cpp's own message (with line and column) for
+/// malformed YAML, and the offending line as the value.
+YAML::Node load_document(const fs::path& file) {
+  std::error_code error;
+  if (!fs::is_regular_file(file, error)) {
+    throw SceneError(file.string() + ": cannot read the scene file: " +
+                     (fs::exists(file, error) ? "not a regular file" : "no such file"));
+  }
+  std::ifstream in(file, std::ios::binary);
+  const std::string content{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in) throw SceneError(file.string() + ": cannot read the scene file");
+
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(content);
+  } catch (const YAML::Exception& e) {
+    throw SceneError(file.string() + ":" + std::to_string(e.mark.line + 1) + ":" +
+                     std::to_string(e.mark.column + 1) + ": malformed YAML: " + e.msg + "; got '" +
+                     line_of(content, e.mark.line) + "'");
+  }
+  if (documents.size() > 1) {
+    throw SceneError(file.string() + ":" + std::to_string(documents[1].Mark().line + 1) +
+                     ": a scene file holds one YAML document; got " +
+                     std::to_string(documents.size()) + " (separated by '---')");
+  }
+  if (documents.empty() || documents.front().IsNull()) {
+    throw SceneError(file.string() + ":1: the scene file is empty (expected a map with keys "
+                     "geometry, material, time, ...; see mlshell --help)");
+  }
+  return documents.front();
+}
+
+InitialState read_initial_state(const Field& field, const fs::path& scene_dir) {
+  field.expect_keys({"affine", "translate", "checkpoint"});
+  InitialState state;
+  const std::optional<Field> checkpoint = field.find("checkpoint");
+  if (checkpoint) {
+    checkpoint->check(field.entries().size() == 1,
+                      "a checkpoint holds the whole state; give it without affine or translate");
+    state.checkpoint = read_existing_path(*checkpoint, scene_dir);
+  }
+  if (const auto affine = field.find("affine")) {
+    const std::vector<Field> rows = affine->items(3, "a 3x3 matrix [[a11, a12, a13], [...], [...]]");
+    std::array<Vec3, 3> matrix{};
+    for (std::size_t i = 0; i < 3; ++i) matrix[i] = rows[i].numbers<3>("a matrix row [ai1, ai2, ai3]");
+    state.affine = matrix;
+  }
+  if (const auto translate = field.find("translate")) {
+    state.translate = translate->numbers<3>("[x, y, z] in m");
+  }
+  return state;
+}
+
+TimeSpec read_time(const Field& field) {
+  field.expect_keys({"dt", "steps"});
+  return TimeSpec{.dt = field.require("dt", "a number > 0, in s").positive_number(),
+                  .steps = field.require("steps", "an integer in 1..1000000").integer_in(1, 1000000)};
+}
+
+bool is_probe_name(const std::string& name) {
+  return std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '_' || c == '-' || c == '.';
+  });
+}
+
+std::vector<Probe> read_probes(const Field& field, const GeometrySpec& geometry) {
+  std::vector<Probe> probes;
+  if (field.is_null()) return probes;
+  // Probe names become CSV column names and JSON keys: keep them to characters safe in both.
+  for (const auto& [name, where] : field.entries()) {
+    if (!is_probe_name(name)) {
+      throw SceneError(where.context() + ": probe names may hold only letters, digits, '_', '-' "
+                       "and '.'; got '" + name + "'");
+    }
+    probes.push_back(Probe{name, read_where(where, SelectionUse::Point, "a probe", geometry)});
+  }
+  return probes;
+}
+
+OutputSpec read_output(const Field& field) {
+  field.expect_keys({"dir", "every", "formats", "samples_per_face", "checkpoint_every"});
+  OutputSpec output;
+  if (const auto dir = field.find("dir")) output.dir = fs::path(dir->string()).lexically_normal();
+  if (const auto every = field.find("every")) output.every = every->integer_in(1, INT_MAX);
+  if (const auto formats = field.find("formats")) {
+    output.formats.clear();
+    for (const Field& item : formats->items()) {
+      const std::string format = item.string();
+      item.check(format == "xdmf" || format == "obj" || format == "csv", "unknown output format",
+                 "xdmf, obj or csv");
+      item.check(std::find(output.formats.begin(), output.formats.end(), format) ==
+                     output.formats.end(),
+                 "format given twice");
+      output.formats.push_back(format);
+    }
+  }
+  if (const auto samples = field.find("samples_per_face")) {
+    output.samples_per_face = samples->integer_in(1, 16);
+  }
+  if (const auto every = field.find("checkpoint_every")) {
+    output.checkpoint_every = every->integer_in(0, INT_MAX);
+  }
+  return output;
+}
+
+SolverSpec read_solver(const Field& field, const fs::path& scene_dir) {
+  field.expect_keys({"options_file"});
+  SolverSpec solver;
+  if (const auto options = field.find("options_file")) {
+    solver.options_file = read_existing_path(*options, scene_dir);
+  }
+  return solver;
+}
+
+}  // namespace
+}  // namespace scene_reading
+
+Scene parse_scene(const std::filesystem::path& file) {
+  using namespace scene_reading;
+  const Field root = Field::document(load_document(file), file.string());
+  root.expect_keys({"name", "geometry", "material", "effects", "initial_state", "time", "probes",
+                    "output", "solver"});
+  const std::filesystem::path scene_dir = file.parent_path();
+
+  Scene scene;
+  scene.file = file;
+  const std::optional<Field> name = root.find("name");
+  scene.name = name ? name->string() : file.stem().string();
+  // Geometry first, whatever the order in the file: selections are checked against the cage.
+  scene.geometry = read_geometry(root.require("geometry", "{cage: {...}, refine: n}"), scene_dir);
+  scene.material = read_material(root.require("material", "{model: ..., thickness, density}"));
+  if (const auto effects = root.find("effects")) scene.effects = read_effects(*effects, scene.geometry);
+  if (const auto initial = root.find("initial_state")) {
+    scene.initial_state = read_initial_state(*initial, scene_dir);
+  }
+  scene.time = read_time(root.require("time", "{dt: ..., steps: ...}"));
+  if (const auto probes = root.find("probes")) scene.probes = read_probes(*probes, scene.geometry);
+  if (const auto output = root.find("output")) scene.output = read_output(*output);
+  if (const auto solver = root.find("solver")) scene.solver = read_solver(*solver, scene_dir);
+  return scene;
+}
+
+Vec3 Motion::at(double t) const {
+  if (t <= over[0]) return {0.0, 0.0, 0.0};
+  if (t >= over[1]) return translate;
+  const double s = (t - over[0]) / (over[1] - over[0]);
+  return {s * translate[0], s * translate[1], s * translate[2]};
+}
+
+std::string effect_name(const Effect& e) {
+  return std::string(scene_reading::kEffectNames[e.index()]);
+}
+
+bool Scene::has_inertia() const {
+  return std::any_of(effects.begin(), effects.end(), [](const Effect& e) {
+    return std::holds_alternative<InertiaEffect>(e);
+  });
+}
+
+}  // namespace mlshell

@@ -1,0 +1,98 @@
+// The scene-file reference printed by `mlshell --help`. Keep it in step with the readers in this
+// folder: scene_test.cpp checks that its example parses and that it names every key.
+#include "mlshell/scene.hpp"
+
+namespace mlshell {
+
+const char* scene_format_help() {
+  return R"(SCENE FILE FORMAT (YAML)
+Units are SI: m, kg, s, N, Pa. Unknown keys, wrong types and out-of-range values are errors that
+name the file, line, key and value. Relative paths in obj, checkpoint and options_file are taken
+from the scene file's folder; output.dir from the current directory. NaN and Inf are never valid.
+
+name: string                 optional; default: the scene file's name without extension
+geometry:                    required
+  cage:                      required; one of
+    {generator: rectangle, size: [w, h], faces: [nx, ny], origin: [x, y]}
+        size > 0 (default [1, 1]); faces >= 1 (default [4, 4]); origin default [0, 0]
+    {generator: l-shape, size: [w, h], faces: [nx, ny], cut: [cx, cy], origin: [x, y]}
+        the rectangle minus its top-right cx x cy block; defaults size [1, 1], faces [10, 10],
+        cut [0.3, 0.3]; each cut in (0, size), a whole number of faces, one face left at least
+    {obj: path}              an all-quad OBJ mesh
+  refine: int                uniform Catmull-Clark refinements of the cage, 0..8 (default 0)
+material:                    required
+  model: clyde-orthotropic   woven cloth, eq. (3.3)-(3.4) of Kopanicakova et al. 2019
+    preset: denim            Table 1 of the paper; k, mu, alpha below override it
+    k: [k1, k2, k3, k4]      Pa, each > 0 (required without a preset)
+    mu: [[...], x4]          mu_ji, four non-empty lists (required without a preset)
+    alpha: [[...], x4]       alpha_ji, nonzero, same lengths as mu (required without a preset)
+    warp: [x, y, z]          warp direction, nonzero (default [1, 0, 0])
+  model: isotropic-svk       St. Venant-Kirchhoff
+    youngs_modulus: E        Pa, > 0 (required)
+    poisson_ratio: nu        in (-1, 0.5) (required)
+  thickness: number          m, > 0; required (denim preset: 0.66e-3)
+  density: number            area density kg/m^2, >= 0; required (denim preset: 0.4)
+  thickness_points: int      Gauss points through the thickness, 1..8 (default 3)
+effects:                     optional list; only the listed effects are simulated (none: statics
+                             of the elastic energy alone). Each item is a name or {name: params}.
+  - inertia                  implicit Euler inertia; at most once
+  - gravity: [gx, gy, gz]    m/s^2; bare `- gravity` means [0, 0, -9.81]; at most once
+  - surface_load: {force_per_area: [fx, fy, fz], ramp: bool}            N/m^2
+  - line_load: {where: CURVE, force_per_length: [fx, fy, fz], ramp: bool} N/m
+  - point_load: {where: POINT, force: [fx, fy, fz], ramp: bool}          N
+  - dirichlet: {where: CURVE or POINT, components: [x, y, z], motion: MOTION, sigma: s,
+                penalty: beta}
+  - clamp: {where: CURVE, motion: MOTION, sigma: s, penalty: beta, rotation_penalty: b}
+    ramp: false (default) or true: the load grows linearly from 0 to full over the steps.
+    components: non-empty subset of x, y, z, no repeats (default all three).
+    sigma: > 0 (default 5): penalty beta = h^-sigma for mesh size h; penalty: explicit beta > 0.
+    rotation_penalty: > 0 (default beta * h^2).
+    MOTION = {translate: [dx, dy, dz], over: [t0, t1]}: the prescribed displacement is 0 until
+    t0, grows linearly to translate at t1 and stays there; t0 <= t1 (t0 == t1 is a jump).
+initial_state:               optional; default: the reference configuration
+  affine: [[a11, a12, a13], [a21, a22, a23], [a31, a32, a33]]      x0 = A X + translate
+  translate: [x, y, z]       m (default [0, 0, 0])
+  checkpoint: path           restart from a checkpoint (alone: not with affine or translate)
+time:                        required
+  dt: number                 s, > 0
+  steps: int                 1..1000000
+probes:                      optional map NAME: POINT; NAME uses letters, digits, _ - .
+output:                      optional
+  dir: path                  default out
+  every: int                 write frames every N steps, >= 1 (default 1; the last step always)
+  formats: [xdmf, obj, csv]  subset without repeats (default all three)
+  samples_per_face: int      limit-surface samples per face and direction, 1..16 (default 4)
+  checkpoint_every: int      steps between checkpoints, >= 0 (default 0: none)
+solver:                      optional
+  options_file: path         PETSc options file; the command line overrides it
+
+WHERE: selections for effects and probes
+  CURVE  boundary                 the whole boundary
+         boundary(SIDE)           SIDE: left, right, bottom, top; re-entrant (l-shape cages only)
+         {box: {min: [x, y, z], max: [x, y, z]}}     boundary parts inside the box; min <= max
+  POINT  {at: [x, y, z]}          the surface point nearest to (x, y, z)
+         corner(CORNER)           CORNER: bottom-left, bottom-right, top-left, top-right (not on
+                                  an l-shape, whose top-right block is cut away)
+         point(u, v)              u, v in [0, 1] over the cage's rectangle, outside the cut
+  Named sides, corners and point(u, v) need a generated cage; with an OBJ cage use {at: ...} or
+  {box: ...}. Inside a {...} map, quote point(u, v): the comma would end the value otherwise.
+
+EXAMPLE
+  name: drape
+  geometry:
+    cage: {generator: rectangle, size: [1.0, 1.0], faces: [4, 4]}
+    refine: 2
+  material: {model: clyde-orthotropic, preset: denim, thickness: 0.66e-3, density: 0.4}
+  effects:
+    - inertia
+    - gravity
+    - dirichlet: {where: corner(bottom-left), motion: {translate: [0.2, 0.2, 0], over: [0, 10]}}
+    - dirichlet: {where: corner(top-right), motion: {translate: [-0.2, -0.2, 0], over: [0, 10]}}
+    - line_load: {where: boundary(bottom), force_per_length: [0, 0, -4], ramp: true}
+  time: {dt: 1.0, steps: 10}
+  probes: {center: {at: [0.5, 0.5, 0]}}
+  output: {dir: out/drape, every: 1, formats: [xdmf, csv], samples_per_face: 4}
+)";
+}
+
+}  // namespace mlshell

@@ -1,0 +1,175 @@
+// From scene effects to energy terms: quadrature of loads and penalty samples on this rank's
+// elements, boundary edges and points.
+#include "mlshell/effect_builder.hpp"
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "mlshell/effects.hpp"
+
+namespace mlshell {
+
+double penalty_parameter(std::optional<double> penalty, double sigma, double mesh_size) {
+  return penalty ? *penalty : std::pow(mesh_size, -sigma);
+}
+
+namespace {
+
+/// A point of the reference surface with its basis on local nodes.
+struct LocalPoint {
+  std::vector<PetscInt> nodes;
+  PointBasis basis;
+  Point3 xu, xv;
+};
+
+LocalPoint local_point(const Discretization& disc, const ParallelLayout& layout,
+                       const SurfacePoint& p) {
+  LocalPoint lp;
+  lp.basis = disc.evaluator().evaluate({p})[0];
+  lp.nodes = to_local_nodes(layout, lp.basis.nodes.data(), lp.basis.size());
+  lp.xu = lp.basis.apply(kDu, disc.mesh().points);
+  lp.xv = lp.basis.apply(kDv, disc.mesh().points);
+  return lp;
+}
+
+/// Gauss points on this rank's selected boundary edges: the point, its arc-length weight, and
+/// the in-plane conormal derivative weights (∂_ν N_i).
+struct EdgeSample {
+  LocalPoint point;
+  double weight;
+  std::vector<double> conormal;
+};
+
+std::vector<EdgeSample> edge_samples(const Discretization& disc, const ParallelLayout& layout,
+                                     const std::vector<BoundaryEdge>& edges) {
+  std::vector<EdgeSample> out;
+  const GaussRule& rule = disc.gauss();
+  for (const BoundaryEdge& e : edges) {
+    if (layout.face_owner(e.face) != layout.rank()) continue;
+    for (size_t g = 0; g < rule.points.size(); ++g) {
+      EdgeSample s{local_point(disc, layout, disc.edge_point(e, rule.points[g])), 0.0, {}};
+      const Point3 tangent = (e.edge % 2 == 0) ? s.point.xu : s.point.xv;
+      s.weight = rule.weights[g] * tangent.norm();
+      // ∂_ν = (ν·A¹) ∂_u + (ν·A²) ∂_v with ν ⊥ tangent in the tangent plane.
+      const Point3 n = s.point.xu.cross(s.point.xv).normalized();
+      const Point3 nu = tangent.cross(n).normalized();
+      Eigen::Matrix2d metric;
+      metric << s.point.xu.dot(s.point.xu), s.point.xu.dot(s.point.xv), s.point.xu.dot(s.point.xv),
+          s.point.xv.dot(s.point.xv);
+      const Eigen::Vector2d c = metric.inverse() * Eigen::Vector2d(nu.dot(s.point.xu), nu.dot(s.point.xv));
+      for (int i = 0; i < s.point.basis.size(); ++i)
+        s.conormal.push_back(c[0] * s.point.basis.w[kDu][i] + c[1] * s.point.basis.w[kDv][i]);
+      out.push_back(std::move(s));
+    }
+  }
+  return out;
+}
+
+/// Local force array of an area load with density `f` (N/m²) over this rank's elements.
+std::vector<double> area_force(const Discretization& disc, const ParallelLayout& layout,
+                               const Vec3& f) {
+  std::vector<double> force(3 * layout.num_local_points(), 0.0);
+  for (int face : layout.local_elements()) {
+    const ElementBasis b = disc.element_basis(face);
+    const auto nodes = to_local_nodes(layout, b.nodes, b.size);
+    for (int g = 0; g < disc.num_quadrature_points(); ++g) {
+      const double w = disc.quadrature_weight(g) * reference_area(b, g, disc.mesh().points);
+      const double* N = b.slot(g, kValue);
+      for (int i = 0; i < b.size; ++i)
+        for (int c = 0; c < 3; ++c) force[3 * nodes[i] + c] += w * N[i] * f[c];
+    }
+  }
+  return force;
+}
+
+SurfacePoint resolve_point(const Discretization& disc, const Where& where, const CageFrame& frame) {
+  return select_point(disc, std::get<PointSelection>(where.selection), frame, where.text);
+}
+
+std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motion>& m) {
+  if (!m) return [](double) { return Eigen::Vector3d::Zero(); };
+  Motion motion = *m;
+  return [motion](double t) {
+    const Vec3 d = motion.at(t);
+    return Eigen::Vector3d(d[0], d[1], d[2]);
+  };
+}
+
+std::unique_ptr<EnergyTerm> penalty_term(const std::string& name, const Discretization& disc,
+                                         const ParallelLayout& layout, const Where& where,
+                                         const CageFrame& frame, double beta, double beta_rot,
+                                         bool clamp, std::array<bool, 3> components,
+                                         const std::optional<Motion>& motion) {
+  std::vector<PenaltySample> samples;
+  if (const auto* curve = std::get_if<CurveSelection>(&where.selection)) {
+    for (EdgeSample& s : edge_samples(disc, layout, select_curve(disc, *curve, frame, where.text))) {
+      PenaltySample p{s.point.nodes, s.point.basis.w[kValue], {}, beta * s.weight, 0.0};
+      if (clamp) p.conormal = s.conormal, p.rotation_weight = beta_rot * s.weight;
+      samples.push_back(std::move(p));
+    }
+  } else {
+    const SurfacePoint sp = resolve_point(disc, where, frame);
+    if (layout.face_owner(sp.face) == layout.rank()) {
+      LocalPoint lp = local_point(disc, layout, sp);
+      samples.push_back({lp.nodes, lp.basis.w[kValue], {}, beta, 0.0});
+    }
+  }
+  return std::make_unique<PenaltyTerm>(name, std::move(samples), components,
+                                       motion_function(motion));
+}
+
+}  // namespace
+
+std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Discretization& disc,
+                                                  const ParallelLayout& layout,
+                                                  const CageFrame& frame) {
+  auto problem = std::make_unique<LevelProblem>(layout);
+  problem->add_term(std::make_unique<ShellElasticTerm>(disc, layout, scene.material));
+  const double ramp_time = scene.time.dt * scene.time.steps;
+  const double h = disc.mesh_size();
+  const int nlocal = layout.num_local_points();
+  for (const Effect& effect : scene.effects) {
+    const std::string name = effect_name(effect);
+    if (std::holds_alternative<InertiaEffect>(effect)) {
+      problem->add_term(std::make_unique<InertiaTerm>(disc, layout, scene.material.density, scene.time.dt));
+    } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
+      const double rho = scene.material.density;
+      const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
+      problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
+    } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
+      problem->add_term(std::make_unique<LinearLoadTerm>(
+          name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
+    } else if (const auto* l = std::get_if<LineLoadEffect>(&effect)) {
+      std::vector<double> force(3 * nlocal, 0.0);
+      const auto edges =
+          select_curve(disc, std::get<CurveSelection>(l->where.selection), frame, l->where.text);
+      for (const EdgeSample& s : edge_samples(disc, layout, edges))
+        for (int i = 0; i < s.point.basis.size(); ++i)
+          for (int c = 0; c < 3; ++c)
+            force[3 * s.point.nodes[i] + c] += s.weight * s.point.basis.w[kValue][i] * l->force_per_length[c];
+      problem->add_term(std::make_unique<LinearLoadTerm>(name, std::move(force), l->ramp ? ramp_time : 0.0));
+    } else if (const auto* p = std::get_if<PointLoadEffect>(&effect)) {
+      std::vector<double> force(3 * nlocal, 0.0);
+      const SurfacePoint sp = resolve_point(disc, p->where, frame);
+      if (layout.face_owner(sp.face) == layout.rank()) {
+        const LocalPoint lp = local_point(disc, layout, sp);
+        for (int i = 0; i < lp.basis.size(); ++i)
+          for (int c = 0; c < 3; ++c) force[3 * lp.nodes[i] + c] += lp.basis.w[kValue][i] * p->force[c];
+      }
+      problem->add_term(std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
+    } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
+      const double beta = penalty_parameter(d->penalty, d->sigma, h);
+      problem->add_term(penalty_term(name, disc, layout, d->where, frame, beta, 0.0, false,
+                                     d->components, d->motion));
+    } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
+      const double beta = penalty_parameter(c->penalty, c->sigma, h);
+      const double beta_rot = c->rotation_penalty ? *c->rotation_penalty : beta * h * h;
+      problem->add_term(penalty_term(name, disc, layout, c->where, frame, beta, beta_rot, true,
+                                     {true, true, true}, c->motion));
+    }
+  }
+  return problem;
+}
+
+}  // namespace mlshell

@@ -1,0 +1,383 @@
+// A scene run end to end (see simulation.hpp).
+#include "mlshell/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "mlshell/effects.hpp"
+#include "mlshell/output_files.hpp"
+
+namespace mlshell {
+
+namespace fs = std::filesystem;
+
+SimulationOptions SimulationOptions::from_petsc_options() {
+  SimulationOptions o;
+  PetscBool flag = PETSC_FALSE;
+  PetscInt gauss = o.gauss_points;
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetBool(nullptr, nullptr, "-mlshell_evaluate", &flag, nullptr));
+  o.evaluate_only = flag;
+  flag = PETSC_FALSE;
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetBool(nullptr, nullptr, "-mlshell_quiet", &flag, nullptr));
+  o.quiet = flag;
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetInt(nullptr, nullptr, "-mlshell_gauss_points", &gauss, nullptr));
+  if (gauss < 2 || gauss > 6)
+    throw SceneError("-mlshell_gauss_points: must be in 2..6; got '" + std::to_string(gauss) + "'");
+  o.gauss_points = static_cast<int>(gauss);
+  return o;
+}
+
+QuadMesh build_cage(const GeometrySpec& geometry) {
+  QuadMesh cage;
+  if (const auto* r = std::get_if<RectangleCage>(&geometry.cage)) {
+    cage = make_rectangle_cage(r->size[0], r->size[1], r->faces[0], r->faces[1], r->origin[0], r->origin[1]);
+  } else if (const auto* l = std::get_if<LShapeCage>(&geometry.cage)) {
+    cage = make_l_shape_cage(l->size[0], l->size[1], l->faces[0], l->faces[1], l->cut[0], l->cut[1],
+                             l->origin[0], l->origin[1]);
+  } else {
+    cage = read_obj_cage(std::get<ObjCage>(geometry.cage).path);
+  }
+  return add_ghost_ring(cage);
+}
+
+std::uint64_t discretization_fingerprint(const Discretization& disc) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&](const void* data, size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  const int n = disc.num_points();
+  mix(&n, sizeof n);
+  for (const Point3& p : disc.mesh().points) mix(p.data(), 3 * sizeof(double));
+  return h;
+}
+
+/// Rank 0's result files.
+struct Simulation::Output {
+  fs::path dir;
+  std::unique_ptr<XdmfSeries> xdmf;
+  std::unique_ptr<CsvTable> csv;
+  bool obj = false;
+  std::vector<PointBasis> samples;  // limit-surface sample points, face by face
+  std::vector<std::int64_t> quads;
+  std::vector<std::string> effect_names;
+};
+
+Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
+    : comm_(comm), scene_(std::move(scene)), options_(options) {
+  MPI_Comm_rank(comm, &rank_);
+  MPI_Comm_size(comm, &size_);
+  wall_start_ = MPI_Wtime();
+  frame_ = CageFrame::from(scene_.geometry);
+  hierarchy_ = std::make_unique<SubdivisionHierarchy>(build_cage(scene_.geometry), scene_.geometry.refine);
+  disc_ = std::make_unique<Discretization>(hierarchy_->finest(), options_.gauss_points);
+  layout_ = std::make_unique<ParallelLayout>(comm, *disc_);
+  problem_ = build_level_problem(scene_, *disc_, *layout_, frame_);
+  for (const Probe& p : scene_.probes)
+    probes_.push_back(select_point(*disc_, std::get<PointSelection>(p.where.selection), frame_, p.where.text));
+  PetscCallAbort(comm, layout_->create_vector(&u_));
+  PetscCallAbort(comm, VecDuplicate(u_, &v_));
+  PetscCallAbort(comm, VecDuplicate(u_, &u_prev_));
+  PetscCallAbort(comm, VecZeroEntries(v_));
+
+  output_ = std::make_unique<Output>();
+  output_->dir = scene_.output.dir;
+  for (const auto& t : problem_->terms()) output_->effect_names.push_back(t->name());
+  if (rank_ == 0) {
+    fs::create_directories(output_->dir);
+    // A summary left by an earlier run must not pass for this run's result.
+    fs::remove(output_->dir / "summary.json");
+    const int k = scene_.output.samples_per_face;
+    std::vector<SurfacePoint> pts;
+    for (int f : disc_->elements()) {
+      const std::int64_t base = static_cast<std::int64_t>(pts.size());
+      for (int j = 0; j <= k; ++j)
+        for (int i = 0; i <= k; ++i) pts.push_back({f, double(i) / k, double(j) / k});
+      for (int j = 0; j < k; ++j)
+        for (int i = 0; i < k; ++i) {
+          const std::int64_t a = base + j * (k + 1) + i;
+          output_->quads.insert(output_->quads.end(), {a, a + 1, a + k + 2, a + k + 1});
+        }
+    }
+    output_->samples = disc_->evaluator().evaluate(pts);
+  }
+}
+
+Simulation::~Simulation() {
+  VecDestroy(&u_);
+  VecDestroy(&v_);
+  VecDestroy(&u_prev_);
+}
+
+PetscErrorCode Simulation::natural_displacement(std::vector<double>& u) const {
+  return layout_->gather_natural(u_, u);
+}
+
+PetscErrorCode Simulation::set_initial_state() {
+  PetscFunctionBeginUser;
+  const InitialState& init = scene_.initial_state;
+  std::vector<double> u, v;
+  if (init.checkpoint) {
+    Checkpoint c;
+    if (rank_ == 0) c = read_checkpoint(*init.checkpoint);
+    std::uint64_t expect = discretization_fingerprint(*disc_);
+    int ok = rank_ != 0 || (c.scene_fingerprint == expect &&
+                            c.displacement.size() == static_cast<size_t>(disc_->num_dofs()));
+    PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
+    if (!ok)
+      throw SceneError(scene_.file.string() + ": initial_state.checkpoint: '" +
+                       init.checkpoint->string() +
+                       "' was written for a different discretization (cage, refine or ghost ring)");
+    PetscCallMPI(MPI_Bcast(&c.step, 1, MPI_INT, 0, comm_));
+    first_step_ = c.step;
+    u = c.displacement;
+    v = c.velocity;
+  } else if (rank_ == 0) {
+    u.assign(disc_->num_dofs(), 0.0);
+    v.assign(disc_->num_dofs(), 0.0);
+    if (init.affine) {
+      const auto& A = *init.affine;
+      for (int i = 0; i < disc_->num_points(); ++i) {
+        const Point3& X = disc_->mesh().points[i];
+        for (int r = 0; r < 3; ++r)
+          u[3 * i + r] = A[r][0] * X[0] + A[r][1] * X[1] + A[r][2] * X[2] + init.translate[r] - X[r];
+      }
+    }
+  }
+  PetscCall(layout_->scatter_natural(u, u_));
+  PetscCall(layout_->scatter_natural(v, v_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::write_frame(int n, double t, bool force) {
+  PetscFunctionBeginUser;
+  const bool frame_due = force || n % scene_.output.every == 0;
+  std::vector<double> u;
+  PetscCall(layout_->gather_natural(u_, u));
+  if (rank_ == 0 && frame_due) {
+    SurfaceSample s;
+    const auto& X = disc_->mesh().points;
+    for (const PointBasis& b : output_->samples) {
+      Point3 x = b.apply(kValue, X), d = Point3::Zero();
+      for (int i = 0; i < b.size(); ++i)
+        for (int c = 0; c < 3; ++c) d[c] += b.w[kValue][i] * u[3 * b.nodes[i] + c];
+      for (int c = 0; c < 3; ++c) {
+        s.points.push_back(x[c] + d[c]);
+        s.displacement.push_back(d[c]);
+      }
+    }
+    s.quads = output_->quads;
+    const auto& formats = scene_.output.formats;
+    auto has = [&](const char* f) { return std::find(formats.begin(), formats.end(), f) != formats.end(); };
+    if (has("xdmf")) {
+      if (!output_->xdmf) output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name);
+      output_->xdmf->add_frame(n, t, s);
+    }
+    if (has("obj")) {
+      char name[64];
+      std::snprintf(name, sizeof name, "frame_%06d.obj", n);
+      std::ostringstream c;
+      c << "mlshell " << scene_.name << " step " << n << " time " << t;
+      write_obj(output_->dir / name, s, c.str());
+    }
+  }
+  if (scene_.output.checkpoint_every > 0 && n > 0 && n % scene_.output.checkpoint_every == 0) {
+    std::vector<double> v;
+    PetscCall(layout_->gather_natural(v_, v));
+    if (rank_ == 0) {
+      char name[64];
+      std::snprintf(name, sizeof name, "checkpoint_%06d.bin", n);
+      write_checkpoint(output_->dir / name,
+                       {n, t, discretization_fingerprint(*disc_), std::move(u), std::move(v)});
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::write_summary(const std::string& status, const SolveReport* last) {
+  PetscFunctionBeginUser;
+  std::vector<double> energies, u;
+  PetscCall(problem_->term_energies(u_, energies));
+  Vec g;
+  PetscReal f, gnorm;
+  PetscCall(VecDuplicate(u_, &g));
+  PetscCall(problem_->objective(u_, &f, g));
+  PetscCall(VecNorm(g, NORM_2, &gnorm));
+  PetscCall(VecDestroy(&g));
+  PetscCall(layout_->gather_natural(u_, u));
+  if (rank_ == 0) {
+    Json::Object energy;
+    double total = 0.0;
+    for (double e : energies) total += e;
+    // One number per effect (several effects of one kind are summed).
+    std::vector<std::pair<std::string, double>> sums;
+    for (size_t i = 0; i < energies.size(); ++i) {
+      auto it = std::find_if(sums.begin(), sums.end(),
+                             [&](const auto& p) { return p.first == output_->effect_names[i]; });
+      if (it == sums.end()) sums.emplace_back(output_->effect_names[i], energies[i]);
+      else it->second += energies[i];
+    }
+    for (const auto& [k, val] : sums) energy.emplace_back(k, Json(val));
+    energy.emplace_back("total", Json(total));
+    Json::Object probes;
+    const auto bases = disc_->evaluator().evaluate(probes_);
+    for (size_t p = 0; p < probes_.size(); ++p) {
+      const Point3 X = bases[p].apply(kValue, disc_->mesh().points);
+      std::vector<double> d(3, 0.0);
+      for (int i = 0; i < bases[p].size(); ++i)
+        for (int c = 0; c < 3; ++c) d[c] += bases[p].w[kValue][i] * u[3 * bases[p].nodes[i] + c];
+      probes.emplace_back(scene_.probes[p].name,
+                          Json(Json::Object{{"reference", Json::array({X[0], X[1], X[2]})},
+                                            {"displacement", Json::array(d)}}));
+    }
+    Json::Object solver{{"type", Json(solver_ ? solver_->type() : std::string("none"))},
+                        {"iterations", Json(static_cast<long long>(total_iterations_))},
+                        {"converged", Json(all_converged_)},
+                        {"reason", Json(last ? last->reason : std::string("not run"))}};
+    Json summary(Json::Object{{"scene", Json(scene_.name)},
+                              {"status", Json(status)},
+                              {"dofs", Json(disc_->num_dofs())},
+                              {"ranks", Json(size_)},
+                              {"steps", Json(steps_done_)},
+                              {"time", Json((steps_done_ + first_step_) * scene_.time.dt)},
+                              {"energy", Json(energy)},
+                              {"gradient_norm", Json(static_cast<double>(gnorm))},
+                              {"probes", Json(probes)},
+                              {"solver", Json(solver)},
+                              {"wall_time", Json(MPI_Wtime() - wall_start_)}});
+    write_file_atomic(output_->dir / "summary.json", summary.dump() + "\n");
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::evaluate(int* status) {
+  PetscFunctionBeginUser;
+  problem_->set_time(first_step_ * scene_.time.dt);
+  if (auto* inertia = problem_->find_term<InertiaTerm>()) {
+    std::vector<double> local;
+    PetscCall(layout_->to_local(u_, local));
+    inertia->set_predictor(local);
+  }
+  std::vector<double> energies;
+  PetscCall(problem_->term_energies(u_, energies));
+  Vec g;
+  PetscReal f, gnorm;
+  PetscCall(VecDuplicate(u_, &g));
+  PetscCall(problem_->objective(u_, &f, g));
+  PetscCall(VecNorm(g, NORM_2, &gnorm));
+  PetscCall(VecDestroy(&g));
+  PetscCall(PetscPrintf(comm_, "mlshell: %s: %d dofs on %d rank(s), initial state\n",
+                        scene_.name.c_str(), disc_->num_dofs(), size_));
+  for (size_t i = 0; i < energies.size(); ++i)
+    PetscCall(PetscPrintf(comm_, "  energy %-14s % .10e\n", output_->effect_names[i].c_str(), energies[i]));
+  PetscCall(PetscPrintf(comm_, "  energy %-14s % .10e\n  gradient norm         %.10e\n", "total",
+                        static_cast<double>(f), static_cast<double>(gnorm)));
+  PetscCall(write_summary("evaluated", nullptr));
+  PetscCall(PetscPrintf(comm_, "mlshell: wrote %s\n", (output_->dir / "summary.json").c_str()));
+  *status = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::step(int n, SolveReport& report) {
+  PetscFunctionBeginUser;
+  const double dt = scene_.time.dt, t = n * dt;
+  problem_->set_time(t);
+  PetscCall(VecCopy(u_, u_prev_));
+  if (auto* inertia = problem_->find_term<InertiaTerm>()) {
+    // û = u_n + dt v_n
+    Vec predictor;
+    std::vector<double> local;
+    PetscCall(VecDuplicate(u_, &predictor));
+    PetscCall(VecWAXPY(predictor, dt, v_, u_));
+    PetscCall(layout_->to_local(predictor, local));
+    PetscCall(VecDestroy(&predictor));
+    inertia->set_predictor(std::move(local));
+  }
+  PetscCall(solver_->solve(u_, report));
+  // v_{n+1} = (u_{n+1} − u_n) / dt
+  PetscCall(VecWAXPY(v_, -1.0, u_prev_, u_));
+  PetscCall(VecScale(v_, 1.0 / dt));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::run(int* status) {
+  PetscFunctionBeginUser;
+  PetscCall(set_initial_state());
+  if (options_.evaluate_only) {
+    PetscCall(evaluate(status));
+    PetscFunctionReturn(0);
+  }
+  solver_ = std::make_unique<StepSolver>(*problem_);
+  PetscCall(PetscPrintf(comm_,
+                        "mlshell: %s: %d dofs (%d elements, h = %.4g m) on %d rank(s), %d step(s) of "
+                        "dt = %g s, solver %s\n",
+                        scene_.name.c_str(), disc_->num_dofs(), static_cast<int>(disc_->elements().size()),
+                        disc_->mesh_size(), size_, scene_.time.steps - first_step_, scene_.time.dt,
+                        solver_->type().c_str()));
+  const bool csv = std::find(scene_.output.formats.begin(), scene_.output.formats.end(), "csv") !=
+                   scene_.output.formats.end();
+  if (rank_ == 0 && csv) {
+    std::vector<std::string> cols{"step", "time"};
+    for (const auto& n : output_->effect_names) cols.push_back("energy_" + n);
+    for (const char* c : {"energy_total", "iterations", "linear_iterations", "gradient_norm",
+                          "converged", "reason", "wall_time"})
+      cols.push_back(c);
+    // Effects of one kind may repeat: number the columns so the header stays unique.
+    for (size_t i = 0; i < cols.size(); ++i)
+      for (size_t j = i + 1; j < cols.size(); ++j)
+        if (cols[j] == cols[i]) cols[j] += "_" + std::to_string(j);
+    output_->csv = std::make_unique<CsvTable>(output_->dir / "steps.csv", cols);
+  }
+  if (first_step_ == 0) PetscCall(write_frame(0, 0.0, true));
+  SolveReport report;
+  for (int n = first_step_ + 1; n <= scene_.time.steps; ++n) {
+    const double t0 = MPI_Wtime();
+    PetscCall(step(n, report));
+    const double wall = MPI_Wtime() - t0;
+    total_iterations_ += report.iterations;
+    ++steps_done_;
+    std::vector<double> energies;
+    PetscCall(problem_->term_energies(u_, energies));
+    double total = 0.0;
+    for (double e : energies) total += e;
+    if (!options_.quiet)
+      PetscCall(PetscPrintf(comm_, "step %4d/%d  t = %-8.4g  E = % .6e  its = %4d  |g| = %.3e  %s  %.2f s\n",
+                            n, scene_.time.steps, n * scene_.time.dt, total, report.iterations,
+                            report.gradient_norm, report.reason.c_str(), wall));
+    if (output_->csv) {
+      std::vector<std::variant<double, long long, std::string>> row{static_cast<long long>(n), n * scene_.time.dt};
+      for (double e : energies) row.emplace_back(e);
+      row.emplace_back(total);
+      row.emplace_back(static_cast<long long>(report.iterations));
+      row.emplace_back(static_cast<long long>(report.linear_iterations));
+      row.emplace_back(report.gradient_norm);
+      row.emplace_back(static_cast<long long>(report.converged));
+      row.emplace_back(report.reason);
+      row.emplace_back(wall);
+      output_->csv->append(row);
+    }
+    PetscCall(write_frame(n, n * scene_.time.dt, n == scene_.time.steps || !report.converged));
+    if (!report.converged) {
+      all_converged_ = false;
+      PetscCall(PetscPrintf(comm_,
+                            "mlshell: step %d did not converge (%s, |g| = %.3e after %d iterations); "
+                            "stopping. Try a smaller dt, more iterations (-tao_max_it) or another "
+                            "solver (-tao_type).\n",
+                            n, report.reason.c_str(), report.gradient_norm, report.iterations));
+      break;
+    }
+  }
+  PetscCall(write_summary(all_converged_ ? "complete" : "solver_failed", &report));
+  PetscCall(PetscPrintf(comm_, "mlshell: results in %s (summary.json%s%s%s)\n",
+                        fs::absolute(output_->dir).c_str(), csv ? ", steps.csv" : "",
+                        output_->xdmf ? (", " + output_->xdmf->xdmf_path().filename().string()).c_str() : "",
+                        std::find(scene_.output.formats.begin(), scene_.output.formats.end(), "obj") !=
+                                scene_.output.formats.end() ? ", frame_*.obj" : ""));
+  *status = all_converged_ ? 0 : kExitSolverFailed;
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell
