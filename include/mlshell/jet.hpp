@@ -8,11 +8,13 @@
 
 namespace mlshell {
 
-template <int N>
+/// With `Second` false only the gradient is propagated (cheaper when no Hessian is needed).
+template <int N, bool Second = true>
 struct Jet {
+  static constexpr bool kSecond = Second;
   double v = 0.0;
   std::array<double, N> g{};
-  std::array<double, N * N> h{};  // full symmetric matrix, row-major
+  std::array<double, Second ? N * N : 0> h{};  // full symmetric matrix, row-major
 
   static Jet constant(double c) {
     Jet j;
@@ -28,72 +30,77 @@ struct Jet {
   double hess(int i, int k) const { return h[i * N + k]; }
 };
 
-template <int N>
-Jet<N> operator+(const Jet<N>& a, const Jet<N>& b) {
-  Jet<N> r;
+template <int N, bool S>
+Jet<N, S> operator+(const Jet<N, S>& a, const Jet<N, S>& b) {
+  Jet<N, S> r;
   r.v = a.v + b.v;
   for (int i = 0; i < N; ++i) r.g[i] = a.g[i] + b.g[i];
-  for (int i = 0; i < N * N; ++i) r.h[i] = a.h[i] + b.h[i];
+  if constexpr (S)
+    for (int i = 0; i < N * N; ++i) r.h[i] = a.h[i] + b.h[i];
   return r;
 }
 
-template <int N>
-Jet<N> operator-(const Jet<N>& a, const Jet<N>& b) {
-  Jet<N> r;
+template <int N, bool S>
+Jet<N, S> operator-(const Jet<N, S>& a, const Jet<N, S>& b) {
+  Jet<N, S> r;
   r.v = a.v - b.v;
   for (int i = 0; i < N; ++i) r.g[i] = a.g[i] - b.g[i];
-  for (int i = 0; i < N * N; ++i) r.h[i] = a.h[i] - b.h[i];
+  if constexpr (S)
+    for (int i = 0; i < N * N; ++i) r.h[i] = a.h[i] - b.h[i];
   return r;
 }
 
-template <int N>
-Jet<N> operator*(double s, const Jet<N>& a) {
-  Jet<N> r;
+template <int N, bool S>
+Jet<N, S> operator*(double s, const Jet<N, S>& a) {
+  Jet<N, S> r;
   r.v = s * a.v;
   for (int i = 0; i < N; ++i) r.g[i] = s * a.g[i];
-  for (int i = 0; i < N * N; ++i) r.h[i] = s * a.h[i];
+  if constexpr (S)
+    for (int i = 0; i < N * N; ++i) r.h[i] = s * a.h[i];
   return r;
 }
 
-template <int N>
-Jet<N> operator+(const Jet<N>& a, double s) {
-  Jet<N> r = a;
+template <int N, bool S>
+Jet<N, S> operator+(const Jet<N, S>& a, double s) {
+  Jet<N, S> r = a;
   r.v += s;
   return r;
 }
 
 /// (ab)'' = a'' b + a b'' + a' b'ᵀ + b' a'ᵀ
-template <int N>
-Jet<N> operator*(const Jet<N>& a, const Jet<N>& b) {
-  Jet<N> r;
+template <int N, bool S>
+Jet<N, S> operator*(const Jet<N, S>& a, const Jet<N, S>& b) {
+  Jet<N, S> r;
   r.v = a.v * b.v;
   for (int i = 0; i < N; ++i) r.g[i] = a.g[i] * b.v + a.v * b.g[i];
-  for (int i = 0; i < N; ++i)
-    for (int k = 0; k < N; ++k)
-      r.h[i * N + k] = a.h[i * N + k] * b.v + a.v * b.h[i * N + k] + a.g[i] * b.g[k] +
+  if constexpr (S)
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < N; ++k)
+        r.h[i * N + k] = a.h[i * N + k] * b.v + a.v * b.h[i * N + k] + a.g[i] * b.g[k] +
                        b.g[i] * a.g[k];
   return r;
 }
 
 /// f(a) for a scalar function with f(a.v) = f0, f'(a.v) = f1, f''(a.v) = f2.
-template <int N>
-Jet<N> chain(const Jet<N>& a, double f0, double f1, double f2) {
-  Jet<N> r;
+template <int N, bool S>
+Jet<N, S> chain(const Jet<N, S>& a, double f0, double f1, double f2) {
+  Jet<N, S> r;
   r.v = f0;
   for (int i = 0; i < N; ++i) r.g[i] = f1 * a.g[i];
-  for (int i = 0; i < N; ++i)
-    for (int k = 0; k < N; ++k) r.h[i * N + k] = f1 * a.h[i * N + k] + f2 * a.g[i] * a.g[k];
+  if constexpr (S)
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < N; ++k) r.h[i * N + k] = f1 * a.h[i * N + k] + f2 * a.g[i] * a.g[k];
   return r;
 }
 
-template <int N>
-Jet<N> sqrt(const Jet<N>& a) {
+template <int N, bool S>
+Jet<N, S> sqrt(const Jet<N, S>& a) {
   const double s = std::sqrt(a.v);
   return chain(a, s, 0.5 / s, -0.25 / (s * a.v));
 }
 
-template <int N>
-Jet<N> inverse(const Jet<N>& a) {
+template <int N, bool S>
+Jet<N, S> inverse(const Jet<N, S>& a) {
   const double i = 1.0 / a.v;
   return chain(a, i, -i * i, 2.0 * i * i * i);
 }

@@ -26,9 +26,18 @@ class Material {
 ///   ψ = k1/2 φ1(Ẽ11²) + k2 φ2(Ẽ11 Ẽ22) + k3/2 φ3(Ẽ22²) + k4 φ4(Ẽ12²),
 ///   φ_j(u) = Σ_i μ_ji/α_ji ((u+1)^α_ji − 1).
 /// (u+1)^α − 1 is evaluated as expm1(α log1p(u)): the exponents reach −12 802.
+///
+/// Domain of validity: a fitted φ_j need not be monotone. Table 1's φ_3 (denim weft) has
+/// φ_3' < 0 beyond u ≈ 0.15 (|Ẽ22| ≈ 0.39) and φ_3 → −∞, because its largest exponent
+/// (α_34 = 30.07) has a negative coefficient. The energy would be unbounded below and a solver
+/// can run away into that region. The model is therefore defined only where every φ_j' > 0:
+/// u_j ≤ u_j^max, the first zero of φ_j'; outside, ψ = +∞, so trial points there are rejected
+/// (it acts as a strain limit at the edge of the fitted range).
 class ClydeOrthotropicMaterial final : public Material {
  public:
-  explicit ClydeOrthotropicMaterial(const ClydeMaterial& p) : p_(p) {}
+  explicit ClydeOrthotropicMaterial(const ClydeMaterial& p);
+  /// u_j^max (infinity if φ_j' stays positive).
+  double argument_limit(int j) const { return limit_[j]; }
   double energy_density(const Strain3& e, Eigen::Vector3d* grad,
                         Eigen::Matrix3d* hess) const override;
   /// φ_j and its first two derivatives at u.
@@ -36,6 +45,7 @@ class ClydeOrthotropicMaterial final : public Material {
 
  private:
   ClydeMaterial p_;
+  std::array<double, 4> limit_;
 };
 
 /// Isotropic St. Venant–Kirchhoff in plane stress:

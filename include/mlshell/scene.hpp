@@ -186,7 +186,7 @@ struct OutputSpec {
   int checkpoint_every = 0;                 ///< 0: no checkpoints
 };
 
-/// `solver: {options_file: path, tolerance: 1e-7}` — PETSc options are the main knob.
+/// `solver: {options_file: path}` — PETSc options are the main knob (tolerances included).
 struct SolverSpec {
   std::optional<std::filesystem::path> options_file;  ///< resolved path; command line wins
 };

@@ -5,6 +5,22 @@
 
 namespace mlshell {
 
+ClydeOrthotropicMaterial::ClydeOrthotropicMaterial(const ClydeMaterial& p) : p_(p) {
+  // First zero of φ_j' on u ≥ 0 (j = 2, argument Ẽ11 Ẽ22, may also be negative: check both
+  // directions down to u = −0.99).
+  for (int j = 0; j < 4; ++j) {
+    limit_[j] = INFINITY;
+    double f, df, ddf;
+    for (double u = 0.0; u <= 100.0; u += 1e-4) {
+      phi(j, u, f, df, ddf);
+      if (!(df > 0.0)) {
+        limit_[j] = u;
+        break;
+      }
+    }
+  }
+}
+
 void ClydeOrthotropicMaterial::phi(int j, double u, double& f, double& df, double& ddf) const {
   // φ(u) = Σ μ/α ((1+u)^α − 1), φ' = Σ μ (1+u)^(α−1), φ'' = Σ μ (α−1) (1+u)^(α−2).
   const double l = std::log1p(u);
@@ -13,6 +29,11 @@ void ClydeOrthotropicMaterial::phi(int j, double u, double& f, double& df, doubl
   const auto& alpha = p_.alpha[j];
   for (size_t i = 0; i < mu.size(); ++i) {
     const double a = alpha[i];
+    if (a == 1.0) {  // linear term: exact for any u (log1p would fail for u <= -1)
+      f += mu[i] * u;
+      df += mu[i];
+      continue;
+    }
     f += mu[i] / a * std::expm1(a * l);
     const double p1 = std::exp((a - 1.0) * l);
     df += mu[i] * p1;
@@ -25,6 +46,9 @@ double ClydeOrthotropicMaterial::energy_density(const Strain3& e, Eigen::Vector3
   const double e11 = e[0], e22 = e[1], e12 = e[2];
   const auto& k = p_.k;
   // Arguments u_j and their derivatives in e: u1 = e11², u2 = e11 e22, u3 = e22², u4 = e12².
+  const double u[4] = {e11 * e11, e11 * e22, e22 * e22, e12 * e12};
+  for (int j = 0; j < 4; ++j)
+    if (std::abs(u[j]) > limit_[j]) return INFINITY;  // outside the fitted domain
   double f[4], d[4], dd[4];
   phi(0, e11 * e11, f[0], d[0], dd[0]);
   phi(1, e11 * e22, f[1], d[1], dd[1]);

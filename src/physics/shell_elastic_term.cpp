@@ -66,7 +66,7 @@ PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSu
           A.setZero();
           for (int p = 0; p < 5; ++p) A += e.basis.slot(g, kDu + p)[i] * H15.middleRows<3>(3 * p);
           A *= qw;
-          for (int j = 0; j < n; ++j) {
+          for (int j = i; j < n; ++j) {  // upper blocks; the lower ones by symmetry below
             Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
             for (int q = 0; q < 5; ++q) block += e.basis.slot(g, kDu + q)[j] * A.middleCols<3>(3 * q);
             for (int c = 0; c < 3; ++c)
@@ -74,6 +74,13 @@ PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSu
           }
         }
       }
+    }
+    if (hess) {
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < i; ++j)
+          for (int c = 0; c < 3; ++c)
+            for (int d = 0; d < 3; ++d)
+              He[(3 * i + c) * 3 * n + 3 * j + d] = He[(3 * j + d) * 3 * n + 3 * i + c];
     }
     if (grad) add_local_gradient(e.nodes, ge.data(), *grad);
     if (hess) PetscCall(add_local_hessian(hess, e.nodes, He.data()));

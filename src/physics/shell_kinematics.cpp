@@ -73,9 +73,12 @@ double ShellSection::energy(const ShellReference& ref, const Vector6& s, Vector6
   return W;
 }
 
-void shell_strains(const ShellReference& ref, const double delta[15], Vector6& s,
-                   Eigen::Matrix<double, 6, 15>* ds, Eigen::Matrix<double, 15, 15>* dds) {
-  using J = Jet<15>;
+namespace {
+
+/// s(δ) with jets J (first or second order).
+template <class J>
+void strains_with_jets(const ShellReference& ref, const double delta[15], Vector6& s,
+                       Eigen::Matrix<double, 6, 15>* ds, Eigen::Matrix<double, 15, 15>* dds) {
   // Deformed quantities a = ā + δ as jets.
   J a[5][3];
   for (int q = 0; q < 5; ++q)
@@ -105,10 +108,37 @@ void shell_strains(const ShellReference& ref, const double delta[15], Vector6& s
     if (ds)
       for (int k = 0; k < 15; ++k) (*ds)(i, k) = strains[i].g[k];
   }
-  if (dds)
-    for (int i = 0; i < 6; ++i)
-      for (int k = 0; k < 15 * 15; ++k) dds[i].data()[k] = strains[i].h[k];
+  if constexpr (J::kSecond)
+    if (dds)
+      for (int i = 0; i < 6; ++i)
+        for (int k = 0; k < 15 * 15; ++k) dds[i].data()[k] = strains[i].h[k];
 }
+
+/// s(δ) in plain arithmetic, for energy-only evaluations.
+void strain_values(const ShellReference& ref, const double delta[15], Vector6& s) {
+  Eigen::Vector3d d[5], a[5];
+  for (int q = 0; q < 5; ++q) {
+    d[q] = Eigen::Vector3d(delta[3 * q], delta[3 * q + 1], delta[3 * q + 2]);
+    a[q] = ref.a[q] + d[q];
+  }
+  auto membrane = [&](int al, int be) {
+    return 0.5 * (ref.a[al].dot(d[be]) + ref.a[be].dot(d[al])) + 0.5 * d[al].dot(d[be]);
+  };
+  const Eigen::Vector3d n = a[0].cross(a[1]).normalized();
+  s << membrane(0, 0), membrane(0, 1), membrane(1, 1), ref.a[2].dot(ref.normal) - a[2].dot(n),
+      ref.a[3].dot(ref.normal) - a[3].dot(n), ref.a[4].dot(ref.normal) - a[4].dot(n);
+}
+
+}  // namespace
+
+void shell_strains(const ShellReference& ref, const double delta[15], Vector6& s,
+                   Eigen::Matrix<double, 6, 15>* ds, Eigen::Matrix<double, 15, 15>* dds) {
+  if (dds) strains_with_jets<Jet<15, true>>(ref, delta, s, ds, dds);
+  else if (ds) strains_with_jets<Jet<15, false>>(ref, delta, s, ds, nullptr);
+  else strain_values(ref, delta, s);
+}
+
+
 
 double shell_point_energy(const ShellReference& ref, const ShellSection& section,
                           const double delta[15], Vector15* g, Matrix15* H) {

@@ -2,10 +2,10 @@
 // `{name: parameters}`. Only the effects listed here are built by the simulation.
 #include <algorithm>
 #include <array>
-#include <tuple>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <tuple>
 
 #include "scene_sections.hpp"
 
@@ -71,7 +71,8 @@ Effect read_gravity(const Field& params, const GeometrySpec&) {
 Effect read_surface_load(const Field& params, const GeometrySpec&) {
   params.expect_keys({"force_per_area", "ramp"});
   return SurfaceLoadEffect{
-      .force_per_area = params.require("force_per_area", "[fx, fy, fz] in N/m²").numbers<3>(kVector),
+      .force_per_area =
+          params.require("force_per_area", "[fx, fy, fz] in N/m²").numbers<3>(kVector),
       .ramp = optional_ramp(params)};
 }
 
@@ -87,11 +88,10 @@ Effect read_line_load(const Field& params, const GeometrySpec& geometry) {
 
 Effect read_point_load(const Field& params, const GeometrySpec& geometry) {
   params.expect_keys({"where", "force", "ramp"});
-  return PointLoadEffect{
-      .where = read_where(params.require("where", "a point selection"), SelectionUse::Point,
-                          "point_load", geometry),
-      .force = params.require("force", "[fx, fy, fz] in N").numbers<3>(kVector),
-      .ramp = optional_ramp(params)};
+  return PointLoadEffect{.where = read_where(params.require("where", "a point selection"),
+                                             SelectionUse::Point, "point_load", geometry),
+                         .force = params.require("force", "[fx, fy, fz] in N").numbers<3>(kVector),
+                         .ramp = optional_ramp(params)};
 }
 
 Effect read_dirichlet(const Field& params, const GeometrySpec& geometry) {

@@ -98,8 +98,8 @@ decltype(GeometrySpec::cage) read_cage(const Field& cage, const std::filesystem:
 GeometrySpec read_geometry(const Field& geometry, const std::filesystem::path& scene_dir) {
   geometry.expect_keys({"cage", "refine"});
   GeometrySpec spec;
-  spec.cage = read_cage(geometry.require("cage", "{generator: rectangle, ...} or {obj: path}"),
-                        scene_dir);
+  spec.cage =
+      read_cage(geometry.require("cage", "{generator: rectangle, ...} or {obj: path}"), scene_dir);
   if (const auto refine = geometry.find("refine")) spec.refine = refine->integer_in(0, 8);
   return spec;
 }

@@ -1,5 +1,6 @@
 // The `material:` section: the orthotropic woven-cloth model of the paper's eq. (3.3)-(3.4)
-// (`clyde-orthotropic`, from a preset and/or explicit k, mu, alpha) or isotropic St. Venant-Kirchhoff.
+// (`clyde-orthotropic`, from a preset and/or explicit k, mu, alpha) or isotropic
+// St. Venant-Kirchhoff (`isotropic-svk`).
 #include <cmath>
 #include <string>
 
@@ -12,7 +13,8 @@ namespace {
 /// its term (u+1)^alpha - 1 vanish, so alpha entries must be nonzero.
 std::array<std::vector<double>, 4> read_phi_rows(const Field& field, bool nonzero) {
   std::array<std::vector<double>, 4> rows;
-  const std::vector<Field> items = field.items(4, "four lists, one per phi_j: [[...], [...], [...], [...]]");
+  const std::vector<Field> items =
+      field.items(4, "four lists, one per phi_j: [[...], [...], [...], [...]]");
   for (std::size_t j = 0; j < 4; ++j) {
     const std::vector<Field> entries = items[j].items();
     items[j].check(!entries.empty(), "must have at least one entry", "a list of numbers");
@@ -55,10 +57,9 @@ ClydeMaterial read_clyde(const Field& material, std::string& preset) {
     if (clyde.mu[j].size() == clyde.alpha[j].size()) continue;
     // Blame what the user wrote: alpha if given, else mu (the other one comes from the preset).
     const Field& given = alpha ? *alpha : *mu;
-    given.items()[j].fail("phi_" + std::to_string(j + 1) + " has " +
-                          std::to_string(clyde.mu[j].size()) + " mu and " +
-                          std::to_string(clyde.alpha[j].size()) +
-                          " alpha entries; they must have the same number");
+    given.items()[j].fail(
+        "phi_" + std::to_string(j + 1) + " has " + std::to_string(clyde.mu[j].size()) + " mu and " +
+        std::to_string(clyde.alpha[j].size()) + " alpha entries; they must have the same number");
   }
   return clyde;
 }
@@ -79,8 +80,8 @@ MaterialSpec read_material(const Field& material) {
   const std::string model_name = model.string();
   MaterialSpec spec;
   if (model_name == "clyde-orthotropic") {
-    material.expect_keys({"model", "preset", "thickness", "density", "warp", "thickness_points", "k",
-                          "mu", "alpha"});
+    material.expect_keys({"model", "preset", "thickness", "density", "warp", "thickness_points",
+                          "k", "mu", "alpha"});
     spec.model = read_clyde(material, spec.preset);
   } else if (model_name == "isotropic-svk") {
     material.expect_keys(

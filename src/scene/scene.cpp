@@ -20,22 +20,26 @@ namespace fs = std::filesystem;
 
 std::filesystem::path read_existing_path(const Field& field, const fs::path& scene_dir) {
   const fs::path written = field.string();
-  const fs::path resolved = (written.is_absolute() ? written : scene_dir / written).lexically_normal();
+  const fs::path resolved =
+      (written.is_absolute() ? written : scene_dir / written).lexically_normal();
   std::error_code error;
   if (!fs::exists(resolved, error)) {
-    field.fail("file not found: " + resolved.string(), "a path relative to the scene file's folder");
+    field.fail("file not found: " + resolved.string(),
+               "a path relative to the scene file's folder");
   }
   return resolved;
 }
 
 namespace {
 
+/// Line `index` (0-based) of `content`, or "" past its end.
 std::string line_of(const std::string& content, int index) {
   std::istringstream lines(content);
   std::string line;
-  for (int i = 0; i <= index && std::getline(lines, line); ++i) {
+  for (int i = 0; std::getline(lines, line); ++i) {
+    if (i == index) return line;
   }
-  return line;
+  return "";
 }
 
 /// The scene file's single YAML document; yaml-cpp's own message (with line and column) for
@@ -64,7 +68,8 @@ YAML::Node load_document(const fs::path& file) {
                      std::to_string(documents.size()) + " (separated by '---')");
   }
   if (documents.empty() || documents.front().IsNull()) {
-    throw SceneError(file.string() + ":1: the scene file is empty (expected a map with keys "
+    throw SceneError(file.string() +
+                     ":1: the scene file is empty (expected a map with keys "
                      "geometry, material, time, ...; see mlshell --help)");
   }
   return documents.front();
@@ -80,9 +85,11 @@ InitialState read_initial_state(const Field& field, const fs::path& scene_dir) {
     state.checkpoint = read_existing_path(*checkpoint, scene_dir);
   }
   if (const auto affine = field.find("affine")) {
-    const std::vector<Field> rows = affine->items(3, "a 3x3 matrix [[a11, a12, a13], [...], [...]]");
+    const std::vector<Field> rows =
+        affine->items(3, "a 3x3 matrix [[a11, a12, a13], [...], [...]]");
     std::array<Vec3, 3> matrix{};
-    for (std::size_t i = 0; i < 3; ++i) matrix[i] = rows[i].numbers<3>("a matrix row [ai1, ai2, ai3]");
+    for (std::size_t i = 0; i < 3; ++i)
+      matrix[i] = rows[i].numbers<3>("a matrix row [ai1, ai2, ai3]");
     state.affine = matrix;
   }
   if (const auto translate = field.find("translate")) {
@@ -93,8 +100,9 @@ InitialState read_initial_state(const Field& field, const fs::path& scene_dir) {
 
 TimeSpec read_time(const Field& field) {
   field.expect_keys({"dt", "steps"});
-  return TimeSpec{.dt = field.require("dt", "a number > 0, in s").positive_number(),
-                  .steps = field.require("steps", "an integer in 1..1000000").integer_in(1, 1000000)};
+  return TimeSpec{
+      .dt = field.require("dt", "a number > 0, in s").positive_number(),
+      .steps = field.require("steps", "an integer in 1..1000000").integer_in(1, 1000000)};
 }
 
 bool is_probe_name(const std::string& name) {
@@ -109,8 +117,10 @@ std::vector<Probe> read_probes(const Field& field, const GeometrySpec& geometry)
   // Probe names become CSV column names and JSON keys: keep them to characters safe in both.
   for (const auto& [name, where] : field.entries()) {
     if (!is_probe_name(name)) {
-      throw SceneError(where.context() + ": probe names may hold only letters, digits, '_', '-' "
-                       "and '.'; got '" + name + "'");
+      throw SceneError(where.context() +
+                       ": probe names may hold only letters, digits, '_', '-' "
+                       "and '.'; got '" +
+                       name + "'");
     }
     probes.push_back(Probe{name, read_where(where, SelectionUse::Point, "a probe", geometry)});
   }
@@ -128,9 +138,9 @@ OutputSpec read_output(const Field& field) {
       const std::string format = item.string();
       item.check(format == "xdmf" || format == "obj" || format == "csv", "unknown output format",
                  "xdmf, obj or csv");
-      item.check(std::find(output.formats.begin(), output.formats.end(), format) ==
-                     output.formats.end(),
-                 "format given twice");
+      item.check(
+          std::find(output.formats.begin(), output.formats.end(), format) == output.formats.end(),
+          "format given twice");
       output.formats.push_back(format);
     }
   }
@@ -169,7 +179,8 @@ Scene parse_scene(const std::filesystem::path& file) {
   // Geometry first, whatever the order in the file: selections are checked against the cage.
   scene.geometry = read_geometry(root.require("geometry", "{cage: {...}, refine: n}"), scene_dir);
   scene.material = read_material(root.require("material", "{model: ..., thickness, density}"));
-  if (const auto effects = root.find("effects")) scene.effects = read_effects(*effects, scene.geometry);
+  if (const auto effects = root.find("effects"))
+    scene.effects = read_effects(*effects, scene.geometry);
   if (const auto initial = root.find("initial_state")) {
     scene.initial_state = read_initial_state(*initial, scene_dir);
   }
@@ -192,9 +203,8 @@ std::string effect_name(const Effect& e) {
 }
 
 bool Scene::has_inertia() const {
-  return std::any_of(effects.begin(), effects.end(), [](const Effect& e) {
-    return std::holds_alternative<InertiaEffect>(e);
-  });
+  return std::any_of(effects.begin(), effects.end(),
+                     [](const Effect& e) { return std::holds_alternative<InertiaEffect>(e); });
 }
 
 }  // namespace mlshell

@@ -82,7 +82,8 @@ std::optional<double> parse_real(std::string_view text) {
                     : std::numeric_limits<double>::infinity();
   }
   if (special == ".nan" || special == "nan") return std::numeric_limits<double>::quiet_NaN();
-  if (body.empty() || !(std::isdigit(static_cast<unsigned char>(body.front())) || body.front() == '.'))
+  if (body.empty() ||
+      !(std::isdigit(static_cast<unsigned char>(body.front())) || body.front() == '.'))
     return std::nullopt;
 
   double value = 0.0;
@@ -139,29 +140,32 @@ void Field::fail(std::string_view problem, std::string_view expected) const {
 
 // --- maps -------------------------------------------------------------------------------------
 
-void Field::expect_map() const {
-  if (!is_map()) fail(is_null() ? "has no value" : "must be a map of `key: value` entries",
-                      "a map such as {key: value, ...}");
+std::string Field::key_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+void Field::expect_map(std::string_view expected) const {
+  if (!is_map())
+    fail(is_null() ? "has no value" : "must be a map of `key: value` entries", expected);
 }
 
 void Field::expect_keys(std::initializer_list<std::string_view> allowed) const {
-  if (!is_map()) {
-    fail(is_null() ? "has no value" : "must be a map of `key: value` entries",
-         "a map with keys " + join(allowed, ", "));
-  }
+  expect_map("a map with keys " + join(allowed, ", "));
   for (const auto& [key, value] : entries()) {
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
 
-    std::string message = value.context() + ": unknown key; got '" + key + "' (allowed keys: " +
-                          join(allowed, ", ");
+    std::string message =
+        value.context() + ": unknown key; got '" + key + "' (allowed keys: " + join(allowed, ", ");
     if (const auto suggestion = nearest_key(key, allowed)) {
       message += "; did you mean '" + std::string(*suggestion) + "'?";
     }
     message += ")";
     if (key.find(')') != std::string::npos && key.find('(') == std::string::npos) {
-      // `{where: point(0.5, 0.5)}`: in a flow map the comma ends the value and `0.5)` becomes a key.
-      message += "; a comma inside (...) splits a value in a {...} map: quote the value, e.g. "
-                 "\"point(0.5, 0.5)\"";
+      // `{where: point(0.5, 0.5)}`: in a flow map the comma ends the value and `0.5)` becomes a
+      // key.
+      message +=
+          "; a comma inside (...) splits a value in a {...} map: quote the value, e.g. "
+          "\"point(0.5, 0.5)\"";
     }
     throw SceneError(message);
   }
@@ -171,8 +175,7 @@ std::optional<Field> Field::find(std::string_view key) const {
   expect_map();
   for (const auto& entry : node_) {
     if (entry.first.IsScalar() && entry.first.Scalar() == key) {
-      return child(entry.second, path_.empty() ? std::string(key) : path_ + "." + std::string(key),
-                   entry.first.Mark().line + 1);
+      return child(entry.second, key_path(key), entry.first.Mark().line + 1);
     }
   }
   return std::nullopt;
@@ -181,12 +184,11 @@ std::optional<Field> Field::find(std::string_view key) const {
 Field Field::require(std::string_view key, std::string_view expected) const {
   if (std::optional<Field> value = find(key)) return *value;
   // Reported at the map that lacks the key, showing what the map does hold.
-  child(node_, path_.empty() ? std::string(key) : path_ + "." + std::string(key), line_)
-      .fail("required key is missing", expected);
+  child(node_, key_path(key), line_).fail("required key is missing", expected);
 }
 
 Field Field::without_value(std::string_view key) const {
-  return child(YAML::Node(YAML::NodeType::Null), path_ + "." + std::string(key), line_);
+  return child(YAML::Node(YAML::NodeType::Null), key_path(key), line_);
 }
 
 std::vector<std::pair<std::string, Field>> Field::entries() const {
@@ -198,10 +200,10 @@ std::vector<std::pair<std::string, Field>> Field::entries() const {
       child(entry.first, path_, key_line).fail("map keys must be plain names");
     }
     const std::string& key = entry.first.Scalar();
-    Field value = child(entry.second, path_.empty() ? key : path_ + "." + key, key_line);
+    Field value = child(entry.second, key_path(key), key_line);
     // yaml-cpp keeps repeated keys; a lookup would silently take the first, so refuse them.
-    const auto previous = std::find_if(out.begin(), out.end(),
-                                       [&](const auto& seen) { return seen.first == key; });
+    const auto previous =
+        std::find_if(out.begin(), out.end(), [&](const auto& seen) { return seen.first == key; });
     if (previous != out.end()) {
       value.fail("key given twice (first at line " + std::to_string(previous->second.line()) + ")");
     }
@@ -231,8 +233,7 @@ std::vector<Field> Field::items(std::size_t n, std::string_view expected) const 
          expected);
   }
   if (node_.size() != n) {
-    fail("must have exactly " + std::to_string(n) + " entries, has " +
-             std::to_string(node_.size()),
+    fail("must have exactly " + std::to_string(n) + " entries, has " + std::to_string(node_.size()),
          expected);
   }
   return items();
@@ -261,7 +262,8 @@ int Field::integer_in(int lo, int hi) const {
   const std::string range = hi == INT_MAX ? ">= " + std::to_string(lo)
                                           : "in " + std::to_string(lo) + ".." + std::to_string(hi);
   const double value = number("an integer " + range);
-  check(value >= lo && value <= hi, "must be " + range);
+  check(value >= lo && value <= hi,
+        value > hi && hi == INT_MAX ? "is too large" : "must be " + range);
   check(value == std::floor(value), "must be a whole number", "an integer " + range);
   return static_cast<int>(value);
 }

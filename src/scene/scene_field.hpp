@@ -71,7 +71,7 @@ class Field {
   double positive_number() const;  ///< a finite number > 0
   int integer_in(int lo, int hi) const;
   bool boolean() const;
-  std::string string() const;      ///< a non-empty scalar
+  std::string string() const;  ///< a non-empty scalar
   /// A sequence of exactly N finite numbers; `expected` describes it, e.g. `[x, y, z]`.
   template <std::size_t N>
   std::array<double, N> numbers(std::string_view expected) const {
@@ -84,7 +84,8 @@ class Field {
  private:
   Field(YAML::Node node, std::string file, std::string path, int line);
   Field child(const YAML::Node& node, std::string path, int line) const;
-  void expect_map() const;
+  std::string key_path(std::string_view key) const;
+  void expect_map(std::string_view expected = "a map such as {key: value, ...}") const;
   double number(std::string_view expected) const;
 
   YAML::Node node_;

@@ -19,7 +19,8 @@ inline constexpr double kDenimDensity = 0.4;
 
 /// A path relative to the scene file's folder (`scene_dir`) that must exist; the message for a
 /// missing one names the key and the resolved path.
-std::filesystem::path read_existing_path(const Field& field, const std::filesystem::path& scene_dir);
+std::filesystem::path read_existing_path(const Field& field,
+                                         const std::filesystem::path& scene_dir);
 
 GeometrySpec read_geometry(const Field& geometry, const std::filesystem::path& scene_dir);
 MaterialSpec read_material(const Field& material);

@@ -64,8 +64,8 @@ Where read_where_map(const scene_reading::Field& field) {
   if (at.has_value() == box.has_value()) {
     field.fail("a where-map has exactly one of the keys `at` and `box`", kWhereForms);
   }
+  // Called after numbers<3>() has validated the vector.
   auto written = [](const Field& vector) {
-    vector.numbers<3>("[x, y, z]");  // validates before the text is used
     std::string text;
     for (const Field& item : vector.items()) text += (text.empty() ? "" : ", ") + item.text();
     return text;
@@ -90,7 +90,9 @@ Where read_where_map(const scene_reading::Field& field) {
   return Where{curve, "box([" + written(min) + "], [" + written(max) + "])"};
 }
 
-bool is_point(const Where& where) { return std::holds_alternative<PointSelection>(where.selection); }
+bool is_point(const Where& where) {
+  return std::holds_alternative<PointSelection>(where.selection);
+}
 
 /// Named sides, corners and (u, v) refer to a generated cage's parameter domain.
 bool needs_generated_cage(const Where& where) {
@@ -102,7 +104,8 @@ bool needs_generated_cage(const Where& where) {
 
 bool is_re_entrant(const Where& where) {
   const auto* curve = std::get_if<CurveSelection>(&where.selection);
-  return curve != nullptr && curve->kind == CurveSelection::Kind::Side && curve->side == "re-entrant";
+  return curve != nullptr && curve->kind == CurveSelection::Kind::Side &&
+         curve->side == "re-entrant";
 }
 
 /// The l-shape lacks its top-right block: corner(top-right) and a point(u, v) strictly inside

@@ -1,7 +1,10 @@
 // Scene parsing: valid scenes give the expected structs (defaults, presets, paths, every where-form
 // and every effect); each class of broken input gives a SceneError that names the file and line,
 // the key path and the offending value. Broken scenes live in tests/data/bad/ (the CLI tests run
-// them through `mlshell` too); each is a complete scene except for the one defect its comment names.
+// them through `mlshell` too); each is a complete scene except for the one defect its comment
+// names.
+#include "mlshell/scene.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,8 +12,6 @@
 #include <fstream>
 #include <numeric>
 #include <sstream>
-
-#include "mlshell/scene.hpp"
 
 namespace mlshell {
 namespace {
@@ -78,12 +79,13 @@ void expect_scene_error(const fs::path& file, int line, const std::vector<std::s
   EXPECT_EQ(message.rfind(location, 0), 0u) << "expected it to start with " << location << "\n"
                                             << message;
   for (const std::string& fragment : fragments) {
-    EXPECT_NE(message.find(fragment), std::string::npos)
-        << "expected '" << fragment << "' in:\n" << message;
+    EXPECT_NE(message.find(fragment), std::string::npos) << "expected '" << fragment << "' in:\n"
+                                                         << message;
   }
 }
 
-void expect_bad_fixture(const std::string& name, int line, const std::vector<std::string>& fragments) {
+void expect_bad_fixture(const std::string& name, int line,
+                        const std::vector<std::string>& fragments) {
   SCOPED_TRACE(name);
   expect_scene_error(kData / "bad" / name, line, fragments);
 }
@@ -271,7 +273,8 @@ TEST(SceneParse, LShapeSceneTakesReEntrantCornersAndParameters) {
   const auto& clamp = as<ClampEffect>(scene.effects[2]);
   EXPECT_EQ(as<CurveSelection>(clamp.where.selection).side, "re-entrant");
   const auto& dirichlet = as<DirichletEffect>(scene.effects[3]);
-  EXPECT_EQ(as<PointSelection>(dirichlet.where.selection).param, (std::array<double, 2>{0.25, 0.9}));
+  EXPECT_EQ(as<PointSelection>(dirichlet.where.selection).param,
+            (std::array<double, 2>{0.25, 0.9}));
   EXPECT_EQ(dirichlet.where.text, "point(0.25, 0.9)");
   EXPECT_EQ(dirichlet.components, (std::array<bool, 3>{true, true, false}));
   EXPECT_EQ(scene.name, "l_shape");
@@ -425,11 +428,16 @@ TEST(WhereText, ParsesEveryStringForm) {
 
 TEST(WhereText, RejectsMalformedFormsWithTheContext) {
   const std::vector<std::pair<std::string, std::string>> cases{
-      {"boundary(middle)", "unknown side"},       {"corner(top)", "unknown corner"},
-      {"corner", "unknown selection"},            {"point(0.5)", "two numbers"},
-      {"point(0.5, 1.5)", "v must be in [0, 1]"}, {"point(nan, 0)", "NaN"},
-      {"point(0.5, 0.5", "unbalanced"},          {"edge(left)", "unknown selection"},
-      {"point(a, 0)", "'a' is not a number"},     {"", "unknown selection"}};
+      {"boundary(middle)", "unknown side"},
+      {"corner(top)", "unknown corner"},
+      {"corner", "unknown selection"},
+      {"point(0.5)", "two numbers"},
+      {"point(0.5, 1.5)", "v must be in [0, 1]"},
+      {"point(nan, 0)", "NaN"},
+      {"point(0.5, 0.5", "unbalanced"},
+      {"edge(left)", "unknown selection"},
+      {"point(a, 0)", "'a' is not a number"},
+      {"", "unknown selection"}};
   for (const auto& [text, problem] : cases) {
     try {
       parse_where_text(text, "s.yaml:3: effects[0].clamp.where");
@@ -447,8 +455,9 @@ TEST(WhereText, RejectsMalformedFormsWithTheContext) {
 // Broken scenes: one test per class of defect, on the fixtures in tests/data/bad/.
 
 TEST(SceneErrors, MalformedYamlReportsLineColumnAndTheLine) {
-  expect_bad_fixture("malformed.yaml", 3,
-                     {":3:62: malformed YAML: illegal flow end", "size: [1.0, 1.0, faces: [4, 4]}"});
+  expect_bad_fixture(
+      "malformed.yaml", 3,
+      {":3:62: malformed YAML: illegal flow end", "size: [1.0, 1.0, faces: [4, 4]}"});
 }
 
 TEST(SceneErrors, UnknownTopLevelKeyListsTheAllowedOnes) {
@@ -480,9 +489,9 @@ TEST(SceneErrors, WrongTypeWordForAnInteger) {
 }
 
 TEST(SceneErrors, VectorOfWrongLength) {
-  expect_bad_fixture("wrong_vector_length.yaml", 9,
-                     {"effects[1].gravity: must have exactly 3 entries, has 2",
-                      "got '[0, -9.81]'"});
+  expect_bad_fixture(
+      "wrong_vector_length.yaml", 9,
+      {"effects[1].gravity: must have exactly 3 entries, has 2", "got '[0, -9.81]'"});
 }
 
 TEST(SceneErrors, MissingRequiredKey) {
@@ -498,10 +507,10 @@ TEST(SceneErrors, MissingObjFileNamesKeyAndResolvedPath) {
 }
 
 TEST(SceneErrors, MissingOptionsFileAndCheckpoint) {
-  expect_bad_fixture("missing_options_file.yaml", 13,
-                     {"solver.options_file: file not found: " +
-                          (kData / "bad" / "no-such-options.yaml").string(),
-                      "got 'no-such-options.yaml'"});
+  expect_bad_fixture(
+      "missing_options_file.yaml", 13,
+      {"solver.options_file: file not found: " + (kData / "bad" / "no-such-options.yaml").string(),
+       "got 'no-such-options.yaml'"});
   expect_bad_fixture("missing_checkpoint.yaml", 13,
                      {"initial_state.checkpoint: file not found: " +
                           (kData / "bad" / "checkpoints" / "none.h5").string(),
@@ -542,9 +551,9 @@ TEST(SceneErrors, LShapeCutNotAWholeNumberOfFaces) {
 }
 
 TEST(SceneErrors, DuplicateInertia) {
-  expect_bad_fixture("duplicate_inertia.yaml", 11,
-                     {"effects[3]: inertia may appear only once (first given at line 8)",
-                      "got 'inertia'"});
+  expect_bad_fixture(
+      "duplicate_inertia.yaml", 11,
+      {"effects[3]: inertia may appear only once (first given at line 8)", "got 'inertia'"});
 }
 
 TEST(SceneErrors, DuplicateKey) {
@@ -604,115 +613,173 @@ TEST(SceneErrors, InlineDefects) {
     return text;
   };
   const std::vector<Case> cases{
-      {"quoted_number", with([](SceneText& t) { t.time = "time: {dt: \"1.0\", steps: 2}\n"; }), 4,
+      {"quoted_number",
+       with([](SceneText& t) { t.time = "time: {dt: \"1.0\", steps: 2}\n"; }),
+       4,
        {"time.dt: must be a number, not a quoted string; got '1.0'"}},
-      {"fractional_steps", with([](SceneText& t) { t.time = "time: {dt: 1, steps: 2.5}\n"; }), 4,
+      {"fractional_steps",
+       with([](SceneText& t) { t.time = "time: {dt: 1, steps: 2.5}\n"; }),
+       4,
        {"time.steps: must be a whole number; got '2.5'"}},
-      {"infinite_dt", with([](SceneText& t) { t.time = "time: {dt: .inf, steps: 2}\n"; }), 4,
+      {"infinite_dt",
+       with([](SceneText& t) { t.time = "time: {dt: .inf, steps: 2}\n"; }),
+       4,
        {"time.dt: must be a finite number", "got '.inf'"}},
-      {"zero_dt", with([](SceneText& t) { t.time = "time:\n  dt: 0\n  steps: 2\n"; }), 5,
+      {"zero_dt",
+       with([](SceneText& t) { t.time = "time:\n  dt: 0\n  steps: 2\n"; }),
+       5,
        {"time.dt: must be > 0; got '0'"}},
       {"zero_faces",
-       with([](SceneText& t) { t.geometry = "geometry: {cage: {generator: rectangle, faces: [0, 4]}}\n"; }),
-       1, {"geometry.cage.faces[0]: must be in 1..100000; got '0'"}},
+       with([](SceneText& t) {
+         t.geometry = "geometry: {cage: {generator: rectangle, faces: [0, 4]}}\n";
+       }),
+       1,
+       {"geometry.cage.faces[0]: must be in 1..100000; got '0'"}},
       {"unknown_generator",
-       with([](SceneText& t) { t.geometry = "geometry: {cage: {generator: circle}}\n"; }), 1,
+       with([](SceneText& t) { t.geometry = "geometry: {cage: {generator: circle}}\n"; }),
+       1,
        {"geometry.cage.generator: unknown generator; got 'circle'", "rectangle or l-shape"}},
       {"default_cut_misfits",
-       with([](SceneText& t) { t.geometry = "geometry: {cage: {generator: l-shape, faces: [4, 4]}}\n"; }),
-       1, {"geometry.cage: cut[0] (default 0.3) must be a whole number of faces", "give `cut:"}},
+       with([](SceneText& t) {
+         t.geometry = "geometry: {cage: {generator: l-shape, faces: [4, 4]}}\n";
+       }),
+       1,
+       {"geometry.cage: cut[0] (default 0.3) must be a whole number of faces", "give `cut:"}},
       {"cut_leaves_no_face",
        with([](SceneText& t) {
          t.geometry = "geometry:\n  cage: {generator: l-shape, faces: [4, 4], cut: [1.0, 0.5]}\n";
        }),
-       2, {"geometry.cage.cut[0]: must be in (0, 1); got '1.0'"}},
+       2,
+       {"geometry.cage.cut[0]: must be in (0, 1); got '1.0'"}},
       {"corner_cut_away",
        with([](SceneText& t) {
          t.geometry = "geometry: {cage: {generator: l-shape, faces: [10, 10]}}\n";
          t.extra = "probes: {p: corner(top-right)}\n";
        }),
-       5, {"probes.p: lies in the block cut away", "got 'corner(top-right)'"}},
+       5,
+       {"probes.p: lies in the block cut away", "got 'corner(top-right)'"}},
       {"unknown_model",
-       with([](SceneText& t) { t.material = "material: {model: neo-hookean, thickness: 1, density: 1}\n"; }),
-       2, {"material.model: unknown material model; got 'neo-hookean'"}},
+       with([](SceneText& t) {
+         t.material = "material: {model: neo-hookean, thickness: 1, density: 1}\n";
+       }),
+       2,
+       {"material.model: unknown material model; got 'neo-hookean'"}},
       {"unknown_preset",
-       with([](SceneText& t) { t.material = "material: {model: clyde-orthotropic, preset: silk}\n"; }),
-       2, {"material.preset: unknown preset; got 'silk'", "(expected denim)"}},
+       with([](SceneText& t) {
+         t.material = "material: {model: clyde-orthotropic, preset: silk}\n";
+       }),
+       2,
+       {"material.preset: unknown preset; got 'silk'", "(expected denim)"}},
       {"zero_alpha",
        with([](SceneText& t) {
-         t.material = "material: {model: clyde-orthotropic, preset: denim, alpha: [[1], [0], [1], [1]]}\n";
+         t.material =
+             "material: {model: clyde-orthotropic, preset: denim, alpha: [[1], [0], [1], [1]]}\n";
        }),
-       2, {"material.alpha[1][0]: must be nonzero; got '0'"}},
+       2,
+       {"material.alpha[1][0]: must be nonzero; got '0'"}},
       {"mu_alpha_lengths_differ",
        with([](SceneText& t) {
          t.material =
              "material: {model: clyde-orthotropic, preset: denim, mu: [[1], [1], [1], [1]]}\n";
        }),
-       2, {"material.mu[0]: phi_1 has 1 mu and 5 alpha entries"}},
+       2,
+       {"material.mu[0]: phi_1 has 1 mu and 5 alpha entries"}},
       {"svk_takes_no_warp",
        with([](SceneText& t) {
-         t.material = "material: {model: isotropic-svk, youngs_modulus: 1, poisson_ratio: 0,\n"
-                      "           thickness: 1, density: 1, warp: [1, 0, 0]}\n";
+         t.material =
+             "material: {model: isotropic-svk, youngs_modulus: 1, poisson_ratio: 0,\n"
+             "           thickness: 1, density: 1, warp: [1, 0, 0]}\n";
        }),
-       3, {"material.warp: unknown key"}},
+       3,
+       {"material.warp: unknown key"}},
       {"zero_warp",
-       with([](SceneText& t) { t.material = "material: {model: clyde-orthotropic, preset: denim, warp: [0, 0, 0]}\n"; }),
-       2, {"material.warp: must not be the zero vector"}},
+       with([](SceneText& t) {
+         t.material = "material: {model: clyde-orthotropic, preset: denim, warp: [0, 0, 0]}\n";
+       }),
+       2,
+       {"material.warp: must not be the zero vector"}},
       {"inertia_with_parameters",
-       with([](SceneText& t) { t.effects = "effects:\n  - inertia: {mass: 2}\n"; }), 4,
+       with([](SceneText& t) { t.effects = "effects:\n  - inertia: {mass: 2}\n"; }),
+       4,
        {"effects[0].inertia: inertia takes no parameters; got '{mass: 2}'"}},
       {"bare_effect_needing_parameters",
-       with([](SceneText& t) { t.effects = "effects: [line_load]\n"; }), 3,
+       with([](SceneText& t) { t.effects = "effects: [line_load]\n"; }),
+       3,
        {"effects[0].line_load: has no value", "a map with keys where, force_per_length, ramp"}},
       {"empty_components",
-       with([](SceneText& t) { t.effects = "effects: [{dirichlet: {where: boundary, components: []}}]\n"; }),
-       3, {"effects[0].dirichlet.components: must name at least one component; got '[]'"}},
+       with([](SceneText& t) {
+         t.effects = "effects: [{dirichlet: {where: boundary, components: []}}]\n";
+       }),
+       3,
+       {"effects[0].dirichlet.components: must name at least one component; got '[]'"}},
       {"box_min_above_max",
        with([](SceneText& t) {
          t.effects = "effects:\n  - clamp: {where: {box: {min: [0, 0, 1], max: [1, 1, 0]}}}\n";
        }),
-       4, {"effects[0].clamp.where.box: min must be <= max", "component 2"}},
+       4,
+       {"effects[0].clamp.where.box: min must be <= max", "component 2"}},
       {"where_map_with_both_forms",
        with([](SceneText& t) {
-         t.effects = "effects:\n  - point_load: {where: {at: [0, 0, 0], box: {}}, force: [0, 0, 1]}\n";
+         t.effects =
+             "effects:\n  - point_load: {where: {at: [0, 0, 0], box: {}}, force: [0, 0, 1]}\n";
        }),
-       4, {"effects[0].point_load.where: a where-map has exactly one of the keys"}},
+       4,
+       {"effects[0].point_load.where: a where-map has exactly one of the keys"}},
       {"unquoted_point_in_flow_map",
-       with([](SceneText& t) { t.effects = "effects:\n  - dirichlet: {where: point(0.5, 0.5)}\n"; }),
-       4, {"effects[0].dirichlet.0.5): unknown key", "quote the value"}},
+       with(
+           [](SceneText& t) { t.effects = "effects:\n  - dirichlet: {where: point(0.5, 0.5)}\n"; }),
+       4,
+       {"effects[0].dirichlet.0.5): unknown key", "quote the value"}},
       {"negative_penalty",
-       with([](SceneText& t) { t.effects = "effects: [{clamp: {where: boundary, penalty: -1}}]\n"; }),
-       3, {"effects[0].clamp.penalty: must be > 0; got '-1'"}},
+       with([](SceneText& t) {
+         t.effects = "effects: [{clamp: {where: boundary, penalty: -1}}]\n";
+       }),
+       3,
+       {"effects[0].clamp.penalty: must be > 0; got '-1'"}},
       {"ramp_not_boolean",
-       with([](SceneText& t) { t.effects = "effects: [{surface_load: {force_per_area: [0, 0, 1], ramp: 1}}]\n"; }),
-       3, {"effects[0].surface_load.ramp: must be a boolean; got '1'", "true or false"}},
+       with([](SceneText& t) {
+         t.effects = "effects: [{surface_load: {force_per_area: [0, 0, 1], ramp: 1}}]\n";
+       }),
+       3,
+       {"effects[0].surface_load.ramp: must be a boolean; got '1'", "true or false"}},
       {"duplicate_gravity",
        with([](SceneText& t) { t.effects = "effects:\n  - gravity\n  - gravity: [0, 0, -1]\n"; }),
-       5, {"effects[1]: gravity may appear only once (first given at line 4)"}},
+       5,
+       {"effects[1]: gravity may appear only once (first given at line 4)"}},
       {"checkpoint_with_affine",
        with([](SceneText& t) {
-         t.extra = "initial_state: {checkpoint: scene.yaml, affine: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n";
+         t.extra =
+             "initial_state: {checkpoint: scene.yaml, affine: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n";
        }),
-       5, {"initial_state.checkpoint: a checkpoint holds the whole state"}},
+       5,
+       {"initial_state.checkpoint: a checkpoint holds the whole state"}},
       {"samples_out_of_range",
-       with([](SceneText& t) { t.extra = "output: {samples_per_face: 17}\n"; }), 5,
+       with([](SceneText& t) { t.extra = "output: {samples_per_face: 17}\n"; }),
+       5,
        {"output.samples_per_face: must be in 1..16; got '17'"}},
       {"repeated_format",
-       with([](SceneText& t) { t.extra = "output: {formats: [csv, csv]}\n"; }), 5,
+       with([](SceneText& t) { t.extra = "output: {formats: [csv, csv]}\n"; }),
+       5,
        {"output.formats[1]: format given twice; got 'csv'"}},
       {"bad_probe_name",
-       with([](SceneText& t) { t.extra = "probes: {\"a,b\": {at: [0, 0, 0]}}\n"; }), 5,
+       with([](SceneText& t) { t.extra = "probes: {\"a,b\": {at: [0, 0, 0]}}\n"; }),
+       5,
        {"probes.a,b: probe names may hold only", "got 'a,b'"}},
       {"missing_time",
-       with([](SceneText& t) { t.time = ""; }), 1, {"time: required key is missing"}},
+       with([](SceneText& t) { t.time = ""; }),
+       1,
+       {"time: required key is missing"}},
       {"missing_cage",
-       with([](SceneText& t) { t.geometry = "geometry: {refine: 1}\n"; }), 1,
+       with([](SceneText& t) { t.geometry = "geometry: {refine: 1}\n"; }),
+       1,
        {"geometry.cage: required key is missing"}},
       {"steps_too_many",
-       with([](SceneText& t) { t.time = "time: {dt: 1, steps: 1e7}\n"; }), 4,
+       with([](SceneText& t) { t.time = "time: {dt: 1, steps: 1e7}\n"; }),
+       4,
        {"time.steps: must be in 1..1000000; got '1e7'"}},
       {"section_not_a_map",
-       with([](SceneText& t) { t.time = "time: [1, 2]\n"; }), 4,
+       with([](SceneText& t) { t.time = "time: [1, 2]\n"; }),
+       4,
        {"time: must be a map", "got '[1, 2]'", "a map with keys dt, steps"}},
   };
   ScratchDir dir;
@@ -747,17 +814,69 @@ TEST(SceneFormatHelp, IsWrappedAndOfReferenceLength) {
 
 TEST(SceneFormatHelp, NamesEveryKey) {
   const std::string help = scene_format_help();
-  for (const char* key :
-       {"name:", "geometry:", "cage:", "generator: rectangle", "l-shape", "size:", "faces:", "cut:",
-        "origin:", "obj:", "refine:", "material:", "model: clyde-orthotropic", "preset: denim", "k:",
-        "mu:", "alpha:", "warp:", "model: isotropic-svk", "youngs_modulus:", "poisson_ratio:",
-        "thickness:", "density:", "thickness_points:", "effects:", "inertia", "gravity:",
-        "surface_load:", "force_per_area:", "line_load:", "force_per_length:", "point_load:",
-        "force:", "ramp", "dirichlet:", "components", "motion", "translate:", "over:", "sigma",
-        "penalty", "clamp:", "rotation_penalty", "initial_state:", "affine:", "checkpoint:",
-        "time:", "dt:", "steps:", "probes:", "output:", "dir:", "every:", "formats:",
-        "samples_per_face:", "checkpoint_every:", "solver:", "options_file:", "boundary(SIDE)",
-        "corner(CORNER)", "point(u, v)", "{at: [x, y, z]}", "{box: {min:"}) {
+  for (const char* key : {"name:",
+                          "geometry:",
+                          "cage:",
+                          "generator: rectangle",
+                          "l-shape",
+                          "size:",
+                          "faces:",
+                          "cut:",
+                          "origin:",
+                          "obj:",
+                          "refine:",
+                          "material:",
+                          "model: clyde-orthotropic",
+                          "preset: denim",
+                          "k:",
+                          "mu:",
+                          "alpha:",
+                          "warp:",
+                          "model: isotropic-svk",
+                          "youngs_modulus:",
+                          "poisson_ratio:",
+                          "thickness:",
+                          "density:",
+                          "thickness_points:",
+                          "effects:",
+                          "inertia",
+                          "gravity:",
+                          "surface_load:",
+                          "force_per_area:",
+                          "line_load:",
+                          "force_per_length:",
+                          "point_load:",
+                          "force:",
+                          "ramp",
+                          "dirichlet:",
+                          "components",
+                          "motion",
+                          "translate:",
+                          "over:",
+                          "sigma",
+                          "penalty",
+                          "clamp:",
+                          "rotation_penalty",
+                          "initial_state:",
+                          "affine:",
+                          "checkpoint:",
+                          "time:",
+                          "dt:",
+                          "steps:",
+                          "probes:",
+                          "output:",
+                          "dir:",
+                          "every:",
+                          "formats:",
+                          "samples_per_face:",
+                          "checkpoint_every:",
+                          "solver:",
+                          "options_file:",
+                          "boundary(SIDE)",
+                          "corner(CORNER)",
+                          "point(u, v)",
+                          "{at: [x, y, z]}",
+                          "{box: {min:"}) {
     EXPECT_NE(help.find(key), std::string::npos) << key;
   }
 }
@@ -768,7 +887,8 @@ TEST(SceneFormatHelp, ExampleParses) {
   ASSERT_NE(start, std::string::npos);
   std::istringstream example(help.substr(start + 9));
   std::string yaml;
-  for (std::string line; std::getline(example, line);) yaml += line.substr(std::min<std::size_t>(2, line.size())) + "\n";
+  for (std::string line; std::getline(example, line);)
+    yaml += line.substr(std::min<std::size_t>(2, line.size())) + "\n";
   ScratchDir dir;
   const Scene scene = parse_scene(dir.write("example.yaml", yaml));
   EXPECT_EQ(scene.name, "drape");
