@@ -31,8 +31,9 @@ class Material {
 /// φ_3' < 0 beyond u ≈ 0.15 (|Ẽ22| ≈ 0.39) and φ_3 → −∞, because its largest exponent
 /// (α_34 = 30.07) has a negative coefficient. The energy would be unbounded below and a solver
 /// can run away into that region. The model is therefore defined only where every φ_j' > 0:
-/// u_j ≤ u_j^max, the first zero of φ_j'; outside, ψ = +∞, so trial points there are rejected
-/// (it acts as a strain limit at the edge of the fitted range).
+/// u_j ≤ u_j^max, the first zero of φ_j', and where ψ ≥ 0 (the linear φ_2 = Ẽ11 Ẽ22 term lets
+/// the fit go negative at large compression-tension strains). Outside, ψ = +∞, so trial points
+/// there are rejected (it acts as a strain limit at the edge of the fitted range).
 class ClydeOrthotropicMaterial final : public Material {
  public:
   explicit ClydeOrthotropicMaterial(const ClydeMaterial& p);

@@ -11,12 +11,20 @@ ClydeOrthotropicMaterial::ClydeOrthotropicMaterial(const ClydeMaterial& p) : p_(
   for (int j = 0; j < 4; ++j) {
     limit_[j] = INFINITY;
     double f, df, ddf;
-    for (double u = 0.0; u <= 100.0; u += 1e-4) {
+    auto increasing = [&](double u) {
       phi(j, u, f, df, ddf);
-      if (!(df > 0.0)) {
-        limit_[j] = u;
-        break;
+      return df > 0.0;
+    };
+    // Coarse scan up to u = 100 (strain 10), then bisection to the first zero of φ_j'.
+    for (double u = 1e-3; u <= 100.0; u *= 1.01) {
+      if (increasing(u)) continue;
+      double lo = u / 1.01, hi = u;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (increasing(mid) ? lo : hi) = mid;
       }
+      limit_[j] = lo;
+      break;
     }
   }
 }
@@ -68,7 +76,9 @@ double ClydeOrthotropicMaterial::energy_density(const Strain3& e, Eigen::Vector3
     H(0, 1) = H(1, 0) = c[1] * (dd[1] * e11 * e22 + d[1]);
     H(2, 2) = c[3] * (dd[3] * 4.0 * e12 * e12 + 2.0 * d[3]);
   }
-  return c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3];
+  const double psi = c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3];
+  // A strain energy density is non-negative; where the fit gives ψ < 0 it is outside its domain.
+  return psi >= 0.0 ? psi : INFINITY;
 }
 
 }  // namespace mlshell
