@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The test command: installs missing Debian packages, builds mlshell and its tests, and runs the
+# whole suite (GoogleTest units, the 2-rank MPI tests, and the command-line tests) with ctest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash .ci/deps
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc)"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+cd build && ctest --output-on-failure -j "$(nproc)" "$@"
