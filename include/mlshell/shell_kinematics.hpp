@@ -48,9 +48,10 @@ class ShellSection {
   std::vector<double> z_, w_;  // Gauss points ξ³ and weights (summing to τ)
 };
 
-/// Generalised strains s(δ) as jets in the 15 surface quantities.
+/// Generalised strains s(δ) in the 15 surface quantities; optionally their Jacobian ds and the
+/// weighted Hessian hw = Σ_i weights_i ∇²s_i (what the chain rule needs), in closed form.
 void shell_strains(const ShellReference& ref, const double delta[15], Vector6& s,
-                   Eigen::Matrix<double, 6, 15>* ds, Eigen::Matrix<double, 15, 15>* dds);
+                   Eigen::Matrix<double, 6, 15>* ds, const Vector6* weights, Matrix15* hw);
 
 /// Energy per unit reference area (times J̄) at one point and its derivatives in δ.
 double shell_point_energy(const ShellReference& ref, const ShellSection& section,

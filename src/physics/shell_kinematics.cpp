@@ -1,10 +1,10 @@
-// Kirchhoff–Love kinematics and through-thickness integration (see shell_kinematics.hpp).
+// Kirchhoff–Love kinematics, closed-form strain derivatives, and through-thickness integration
+// (see shell_kinematics.hpp).
 #include "mlshell/shell_kinematics.hpp"
 
 #include <Eigen/Dense>
 
 #include "mlshell/discretization.hpp"
-#include "mlshell/jet.hpp"
 
 namespace mlshell {
 
@@ -75,47 +75,23 @@ double ShellSection::energy(const ShellReference& ref, const Vector6& s, Vector6
 
 namespace {
 
-/// s(δ) with jets J (first or second order).
-template <class J>
-void strains_with_jets(const ShellReference& ref, const double delta[15], Vector6& s,
-                       Eigen::Matrix<double, 6, 15>* ds, Eigen::Matrix<double, 15, 15>* dds) {
-  // Deformed quantities a = ā + δ as jets.
-  J a[5][3];
-  for (int q = 0; q < 5; ++q)
-    for (int c = 0; c < 3; ++c) a[q][c] = J::variable(delta[3 * q + c], 3 * q + c) + ref.a[q][c];
-  // Membrane: ε_αβ = ā_(α·δ_β) + ½ δ_α·δ_β, from jets of δ only (no cancellation).
-  J d[2][3];
-  for (int q = 0; q < 2; ++q)
-    for (int c = 0; c < 3; ++c) d[q][c] = J::variable(delta[3 * q + c], 3 * q + c);
-  auto membrane = [&](int al, int be) {
-    J e = J::constant(0.0);
-    for (int c = 0; c < 3; ++c)
-      e = e + 0.5 * (ref.a[al][c] * d[be][c] + ref.a[be][c] * d[al][c]) + 0.5 * (d[al][c] * d[be][c]);
-    return e;
-  };
-  // Bending: κ_αβ = ā_αβ·ā₃ − a_αβ·(a₁ × a₂)/|a₁ × a₂|.
-  J cr[3] = {a[0][1] * a[1][2] - a[0][2] * a[1][1], a[0][2] * a[1][0] - a[0][0] * a[1][2],
-             a[0][0] * a[1][1] - a[0][1] * a[1][0]};
-  const J inv_norm = inverse(sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]));
-  auto bending = [&](int q) {
-    const J p = a[q][0] * cr[0] + a[q][1] * cr[1] + a[q][2] * cr[2];
-    return (-1.0 * (p * inv_norm)) + ref.a[q].dot(ref.normal);
-  };
-  const J strains[6] = {membrane(0, 0), membrane(0, 1), membrane(1, 1),
-                        bending(2),     bending(3),     bending(4)};
-  for (int i = 0; i < 6; ++i) {
-    s[i] = strains[i].v;
-    if (ds)
-      for (int k = 0; k < 15; ++k) (*ds)(i, k) = strains[i].g[k];
-  }
-  if constexpr (J::kSecond)
-    if (dds)
-      for (int i = 0; i < 6; ++i)
-        for (int k = 0; k < 15 * 15; ++k) dds[i].data()[k] = strains[i].h[k];
+Eigen::Matrix3d skew(const Eigen::Vector3d& x) {
+  Eigen::Matrix3d m;
+  m << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
+  return m;
 }
 
-/// s(δ) in plain arithmetic, for energy-only evaluations.
-void strain_values(const ShellReference& ref, const double delta[15], Vector6& s) {
+}  // namespace
+
+// Derivatives in closed form. With c = a₁ × a₂, s = |c|, n = c/s, P = I − n nᵀ:
+//   ε11: ∂/∂δ₁ = a₁;  ε12: ∂/∂δ₁ = a₂/2, ∂/∂δ₂ = a₁/2;  ε22: ∂/∂δ₂ = a₂;
+//   κ_q = b̄_q − a_q·n:  ∂/∂δ_q = −n,  ∂/∂δ₁ = −a₂ × g_q,  ∂/∂δ₂ = −g_q × a₁,  g_q = P a_q / s.
+// For the weighted Hessian Σ_i w_i ∇²s_i the bending part is that of F = v·n with
+// v = −Σ_q w_{3+q} a_q, through c(a₁, a₂) = a₁ × a₂ (dc = −[a₂]× da₁ + [a₁]× da₂):
+//   ∂²F/∂c² = −[(n·v) P + n (Pv)ᵀ + (Pv) nᵀ]/s²,  ∂²F/∂a_q∂c = −w_{3+q} P/s,
+//   ∂²F/∂a₁∂a₂ also holds −[∂F/∂c]×, the second derivative of the bilinear map c.
+void shell_strains(const ShellReference& ref, const double delta[15], Vector6& s,
+                   Eigen::Matrix<double, 6, 15>* ds, const Vector6* weights, Matrix15* hw) {
   Eigen::Vector3d d[5], a[5];
   for (int q = 0; q < 5; ++q) {
     d[q] = Eigen::Vector3d(delta[3 * q], delta[3 * q + 1], delta[3 * q + 2]);
@@ -124,38 +100,67 @@ void strain_values(const ShellReference& ref, const double delta[15], Vector6& s
   auto membrane = [&](int al, int be) {
     return 0.5 * (ref.a[al].dot(d[be]) + ref.a[be].dot(d[al])) + 0.5 * d[al].dot(d[be]);
   };
-  const Eigen::Vector3d n = a[0].cross(a[1]).normalized();
+  const Eigen::Vector3d c = a[0].cross(a[1]);
+  const double norm = c.norm();
+  const Eigen::Vector3d n = c / norm;
   s << membrane(0, 0), membrane(0, 1), membrane(1, 1), ref.a[2].dot(ref.normal) - a[2].dot(n),
       ref.a[3].dot(ref.normal) - a[3].dot(n), ref.a[4].dot(ref.normal) - a[4].dot(n);
+  if (!ds) return;
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - n * n.transpose();
+  ds->setZero();
+  ds->block<1, 3>(0, 0) = a[0].transpose();
+  ds->block<1, 3>(1, 0) = 0.5 * a[1].transpose();
+  ds->block<1, 3>(1, 3) = 0.5 * a[0].transpose();
+  ds->block<1, 3>(2, 3) = a[1].transpose();
+  for (int q = 0; q < 3; ++q) {
+    const Eigen::Vector3d g = P * a[2 + q] / norm;
+    ds->block<1, 3>(3 + q, 3 * (2 + q)) = -n.transpose();
+    ds->block<1, 3>(3 + q, 0) = -a[1].cross(g).transpose();
+    ds->block<1, 3>(3 + q, 3) = -g.cross(a[0]).transpose();
+  }
+  if (!hw) return;
+  const Vector6& w = *weights;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  hw->setZero();
+  hw->block<3, 3>(0, 0) = w[0] * I;
+  hw->block<3, 3>(0, 3) = 0.5 * w[1] * I;
+  hw->block<3, 3>(3, 0) = 0.5 * w[1] * I;
+  hw->block<3, 3>(3, 3) = w[2] * I;
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int q = 0; q < 3; ++q) v -= w[3 + q] * a[2 + q];
+  const Eigen::Vector3d Pv = P * v;
+  const Eigen::Matrix3d Hc =
+      -(n.dot(v) * P + n * Pv.transpose() + Pv * n.transpose()) / (norm * norm);
+  const Eigen::Vector3d gc = Pv / norm;
+  const Eigen::Matrix3d J1 = -skew(a[1]), J2 = skew(a[0]);  // ∂c/∂a₁, ∂c/∂a₂
+  hw->block<3, 3>(0, 0) += J1.transpose() * Hc * J1;
+  hw->block<3, 3>(3, 3) += J2.transpose() * Hc * J2;
+  const Eigen::Matrix3d mixed = J1.transpose() * Hc * J2 - skew(gc);
+  hw->block<3, 3>(0, 3) += mixed;
+  hw->block<3, 3>(3, 0) += mixed.transpose();
+  for (int q = 0; q < 3; ++q) {
+    const Eigen::Matrix3d Aq = -w[3 + q] * P / norm;  // ∂²F/∂a_q∂c
+    const int col = 3 * (2 + q);
+    hw->block<3, 3>(col, 0) += Aq * J1;
+    hw->block<3, 3>(col, 3) += Aq * J2;
+    hw->block<3, 3>(0, col) += (Aq * J1).transpose();
+    hw->block<3, 3>(3, col) += (Aq * J2).transpose();
+  }
 }
-
-}  // namespace
-
-void shell_strains(const ShellReference& ref, const double delta[15], Vector6& s,
-                   Eigen::Matrix<double, 6, 15>* ds, Eigen::Matrix<double, 15, 15>* dds) {
-  if (dds) strains_with_jets<Jet<15, true>>(ref, delta, s, ds, dds);
-  else if (ds) strains_with_jets<Jet<15, false>>(ref, delta, s, ds, nullptr);
-  else strain_values(ref, delta, s);
-}
-
-
 
 double shell_point_energy(const ShellReference& ref, const ShellSection& section,
                           const double delta[15], Vector15* g, Matrix15* H) {
-  Vector6 s;
+  Vector6 s, gs;
   Eigen::Matrix<double, 6, 15> ds;
-  Eigen::Matrix<double, 15, 15> dds[6];
-  const bool derivatives = g || H;
-  shell_strains(ref, delta, s, derivatives ? &ds : nullptr, H ? dds : nullptr);
-  Vector6 gs;
   Matrix6 Hs;
+  const bool derivatives = g || H;
+  shell_strains(ref, delta, s, nullptr, nullptr, nullptr);
   const double W = section.energy(ref, s, derivatives ? &gs : nullptr, H ? &Hs : nullptr);
+  if (!derivatives) return ref.area * W;
+  Matrix15 hw;
+  shell_strains(ref, delta, s, &ds, &gs, H ? &hw : nullptr);
   if (g) *g = ref.area * (ds.transpose() * gs);
-  if (H) {
-    *H = ds.transpose() * Hs * ds;
-    for (int i = 0; i < 6; ++i) *H += gs[i] * dds[i];
-    *H *= ref.area;
-  }
+  if (H) *H = ref.area * (ds.transpose() * Hs * ds + hw);
   return ref.area * W;
 }
 
