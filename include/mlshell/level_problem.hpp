@@ -38,13 +38,15 @@ class LevelProblem {
   PetscErrorCode term_energies(Vec u, std::vector<double>& energies);
 
   long objective_evaluations() const { return objective_evaluations_; }
+  /// Evaluations whose energy was not finite: trial points outside a material's valid domain.
+  long inadmissible_evaluations() const { return inadmissible_evaluations_; }
   long hessian_evaluations() const { return hessian_evaluations_; }
 
  private:
   const ParallelLayout& layout_;
   std::vector<std::unique_ptr<EnergyTerm>> terms_;
   std::vector<double> u_local_, g_local_;
-  long objective_evaluations_ = 0, hessian_evaluations_ = 0;
+  long objective_evaluations_ = 0, hessian_evaluations_ = 0, inadmissible_evaluations_ = 0;
 };
 
 }  // namespace mlshell

@@ -7,6 +7,7 @@
 //   -mlshell_gauss_points <3>    Gauss points per direction on each element (2..6)
 //   -mlshell_output_dir <dir>    override the scene's output.dir
 //   -mlshell_steps <n>           override the scene's time.steps
+//   -mlshell_dt <dt>             override the scene's time.dt
 //   -mlshell_quiet               no per-step progress lines
 #pragma once
 

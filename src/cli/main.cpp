@@ -8,6 +8,7 @@
 // converge (results up to that step are written and summary.json says so), 4 output failure.
 #include <petscsys.h>
 
+#include <cmath>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -30,6 +31,8 @@ const char* kUsage =
     "                              state; writes summary.json and exits\n"
     "  -mlshell_gauss_points N     Gauss points per direction per element (default 3, 2..6)\n"
     "  -mlshell_quiet              no per-step progress lines\n"
+    "  -mlshell_dt DT, -mlshell_steps N, -mlshell_output_dir DIR\n"
+    "                              override the scene's time.dt, time.steps, output.dir\n"
     "  -options_file FILE          PETSc options from FILE (plain or .yaml); the scene may name\n"
     "                              one (solver.options_file); the command line wins over both\n"
     "\n"
@@ -86,6 +89,11 @@ int main(int argc, char** argv) {
     PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetInt(nullptr, nullptr, "-mlshell_steps", &steps, nullptr));
     if (steps < 1) throw mlshell::SceneError("-mlshell_steps: must be >= 1; got '" + std::to_string(steps) + "'");
     scene.time.steps = static_cast<int>(steps);
+    PetscReal dt = scene.time.dt;
+    PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetReal(nullptr, nullptr, "-mlshell_dt", &dt, nullptr));
+    if (!(dt > 0.0) || !std::isfinite(dt))
+      throw mlshell::SceneError("-mlshell_dt: must be a positive number; got '" + std::to_string(dt) + "'");
+    scene.time.dt = dt;
     mlshell::Simulation sim(PETSC_COMM_WORLD, std::move(scene),
                             mlshell::SimulationOptions::from_petsc_options());
     PetscCallAbort(PETSC_COMM_WORLD, sim.run(&status));

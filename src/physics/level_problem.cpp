@@ -28,6 +28,7 @@ PetscErrorCode LevelProblem::objective(Vec u, PetscReal* f, Vec g) {
   double mine = local.value(), total = 0.0;
   PetscCallMPI(MPI_Allreduce(&mine, &total, 1, MPI_DOUBLE, MPI_SUM, layout_.comm()));
   *f = std::isfinite(total) ? total : PETSC_INFINITY;
+  if (!std::isfinite(total)) ++inadmissible_evaluations_;
   if (g) {
     PetscCall(VecZeroEntries(g));
     PetscCall(layout_.add_to_global(g_local_, g));

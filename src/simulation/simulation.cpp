@@ -236,7 +236,10 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
     Json::Object solver{{"type", Json(solver_ ? solver_->type() : std::string("none"))},
                         {"iterations", Json(static_cast<long long>(total_iterations_))},
                         {"converged", Json(all_converged_)},
-                        {"reason", Json(last ? last->reason : std::string("not run"))}};
+                        {"reason", Json(last ? last->reason : std::string("not run"))},
+                        {"objective_evaluations", Json(problem_->objective_evaluations())},
+                        {"hessian_evaluations", Json(problem_->hessian_evaluations())},
+                        {"inadmissible_trial_points", Json(problem_->inadmissible_evaluations())}};
     Json summary(Json::Object{{"scene", Json(scene_.name)},
                               {"status", Json(status)},
                               {"dofs", Json(disc_->num_dofs())},
@@ -367,6 +370,12 @@ PetscErrorCode Simulation::run(int* status) {
                             "stopping. Try a smaller dt, more iterations (-tao_max_it) or another "
                             "solver (-tao_type).\n",
                             n, report.reason.c_str(), report.gradient_norm, report.iterations));
+      if (problem_->inadmissible_evaluations() > 0)
+        PetscCall(PetscPrintf(comm_,
+                              "mlshell: %ld trial point(s) lay outside the material's valid domain "
+                              "(strains beyond the fitted range, see `mlshell --help`): the "
+                              "iterates are pressed against the edge of the material model.\n",
+                              problem_->inadmissible_evaluations()));
       break;
     }
   }
