@@ -1,6 +1,8 @@
 // TAO as the step solver (see step_solver.hpp for the defaults).
 #include "mlshell/step_solver.hpp"
 
+#include <string>
+
 namespace mlshell {
 
 namespace {
@@ -31,9 +33,6 @@ PetscErrorCode default_option(const char* name, const char* value) {
 StepSolver::StepSolver(LevelProblem& problem) : problem_(problem) {
   MPI_Comm comm = problem.layout().comm();
   PetscCallAbort(comm, default_option("-tao_type", "bntr"));
-  PetscCallAbort(comm, default_option("-tao_ksp_type", "stcg"));
-  PetscCallAbort(comm, default_option("-tao_pc_type", "lu"));
-  PetscCallAbort(comm, default_option("-tao_pc_factor_mat_solver_type", "mumps"));
   PetscCallAbort(comm, default_option("-tao_gatol", "1e-7"));
   PetscCallAbort(comm, default_option("-tao_gttol", "1e-10"));
   PetscCallAbort(comm, default_option("-tao_grtol", "0"));
@@ -44,6 +43,19 @@ StepSolver::StepSolver(LevelProblem& problem) : problem_(problem) {
   PetscCallAbort(comm, TaoSetObjective(tao_, objective_only, &problem_));
   PetscCallAbort(comm, TaoSetHessian(tao_, H_, H_, hessian, &problem_));
   PetscCallAbort(comm, TaoSetFromOptions(tao_));
+  // Newton-type TAO solvers own a KSP whose prefix depends on the type (tao_bnk_, tao_nls_, ...):
+  // default it to Steihaug–Toint CG with a direct factorisation unless the user chose otherwise.
+  KSP ksp = nullptr;
+  PetscCallAbort(comm, TaoGetKSP(tao_, &ksp));
+  if (ksp) {
+    const char* prefix = nullptr;
+    PetscCallAbort(comm, KSPGetOptionsPrefix(ksp, &prefix));
+    const std::string p = std::string("-") + (prefix ? prefix : "");
+    PetscCallAbort(comm, default_option((p + "ksp_type").c_str(), "stcg"));
+    PetscCallAbort(comm, default_option((p + "pc_type").c_str(), "lu"));
+    PetscCallAbort(comm, default_option((p + "pc_factor_mat_solver_type").c_str(), "mumps"));
+    PetscCallAbort(comm, KSPSetFromOptions(ksp));
+  }
 }
 
 StepSolver::~StepSolver() {

@@ -1,8 +1,10 @@
 // Solves one step's minimisation problem with a PETSc TAO solver (options prefix `-tao_`).
 //
 // Defaults (all overridable from the command line or an options file, which win):
-//   -tao_type bntr -tao_ksp_type stcg -tao_pc_type lu -tao_pc_factor_mat_solver_type mumps
-//   -tao_gatol 1e-7 (paper eq. 7.1) -tao_gttol 1e-10 -tao_grtol 0 -tao_max_it 1000
+//   -tao_type bntr -tao_gatol 1e-7 (paper eq. 7.1) -tao_gttol 1e-10 -tao_grtol 0 -tao_max_it 1000
+// and, for the KSP of whichever Newton-type TAO solver is chosen (prefix tao_bnk_ for
+// bntr/bnls/bqnkls..., tao_nls_ for nls, ...): ksp_type stcg, pc_type lu,
+// pc_factor_mat_solver_type mumps.
 // i.e. a Newton trust-region method whose subproblem is solved with a sparse direct
 // factorisation (the recursive multilevel trust region arrives with its own TAO type).
 #pragma once

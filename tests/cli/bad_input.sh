@@ -189,6 +189,7 @@ mpi_case() {
     fail "$name: 2-rank output looks like a crash: $(grep -hE "$CRASH_PATTERN" "$dir/stdout.txt" "$dir/stderr.txt" | head -3)"
   fi
   rc=0
+  # shellcheck disable=SC2016  # expanded by the inner bash, per rank
   (cd "$dir" && OMPI_MCA_orte_abort_on_non_zero_status=0 timeout 60 mpiexec --oversubscribe -n 2 \
      bash -c '"$0" "$@" >/dev/null 2>&1; rc=$?; echo "$rc" >"rank-${OMPI_COMM_WORLD_RANK:-x}.rc"; exit 0' \
      "$MLSHELL" "$scene" >/dev/null 2>&1) || rc=$?

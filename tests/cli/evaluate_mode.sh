@@ -59,7 +59,8 @@ evaluate() {
   local cmd=("$MLSHELL" "$name.yaml" -mlshell_evaluate -mlshell_output_dir "$out")
   [[ $ranks -eq 1 ]] || cmd=(mpiexec --oversubscribe -n "$ranks" "${cmd[@]}")
   echo "check: $name on $ranks rank(s): -mlshell_evaluate exits 0 and prints every energy"
-  local log="logs/$(basename "$out")"
+  local log
+  log="logs/$(basename "$out")"
   local rc=0
   timeout 120 "${cmd[@]}" >"$log.stdout" 2>"$log.stderr" || rc=$?
   [[ $rc -eq 0 ]] || die "$name ($ranks ranks): exit status $rc, expected 0: $(head -c 800 "$log.stderr")"

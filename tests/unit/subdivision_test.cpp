@@ -5,36 +5,13 @@
 
 #include "mlshell/discretization.hpp"
 #include "mlshell/subdivision_hierarchy.hpp"
+#include "physics_fixtures.hpp"
 
 using namespace mlshell;
 
 namespace {
 
 QuadMesh square_cage(int n) { return add_ghost_ring(make_rectangle_cage(1.0, 1.0, n, n, 0.0, 0.0)); }
-
-/// A 4×4 cage whose centre vertex is lifted and has valence `valence` (3, 5, 6 or 8), built as
-/// a fan of quads around it: an interior extraordinary vertex.
-QuadMesh fan_cage(int valence) {
-  QuadMesh m;
-  m.points.emplace_back(0, 0, 0);
-  const double pi = std::acos(-1.0);
-  // Two rings: spokes (radius 1, 2) and mid points (radius 1.4, 2.6).
-  for (int r = 0; r < 2; ++r)
-    for (int k = 0; k < valence; ++k) {
-      const double a = 2 * pi * k / valence, b = 2 * pi * (k + 0.5) / valence;
-      m.points.emplace_back((r + 1) * std::cos(a), (r + 1) * std::sin(a), 0.05 * r);
-      m.points.emplace_back((r + 1.3) * std::cos(b), (r + 1.3) * std::sin(b), 0.0);
-    }
-  auto spoke = [&](int r, int k) { return 1 + r * 2 * valence + 2 * (k % valence); };
-  auto mid = [&](int r, int k) { return 2 + r * 2 * valence + 2 * (k % valence); };
-  for (int k = 0; k < valence; ++k) {
-    m.quads.push_back({0, spoke(0, k), mid(0, k), spoke(0, k + 1)});
-    m.quads.push_back({spoke(0, k), spoke(1, k), mid(1, k), mid(0, k)});
-    m.quads.push_back({mid(0, k), mid(1, k), spoke(1, k + 1), spoke(0, k + 1)});
-  }
-  m.ghost.assign(m.quads.size(), 0);
-  return m;
-}
 
 }  // namespace
 
@@ -65,42 +42,43 @@ TEST(Subdivision, GeneratedCagesAreAllRegular) {
   }
 }
 
-TEST(Subdivision, BicubicMatchesOpenSubdivOnRegularFaces) {
-  // The fan cage has regular faces away from its centre; compare them with OpenSubdiv by
-  // evaluating the B-spline and the limit stencil of the same face at the same points.
-  QuadMesh mesh = SubdivisionHierarchy(add_ghost_ring(fan_cage(5)), 2).finest();
-  LimitEvaluator eval(mesh);
-  ASSERT_GT(eval.num_irregular_faces(), 0);
-  // Mark every face irregular in a copy to force the OpenSubdiv path; compare positions.
-  int compared = 0;
-  for (int f = 0; f < mesh.num_faces() && compared < 20; ++f) {
-    if (mesh.is_ghost(f) || !eval.is_regular(f)) continue;
-    std::array<std::array<double, 16>, 6> w;
-    const double u = 0.3, v = 0.7;
-    bicubic_bspline_basis(u, v, w);
-    // Compare with the exact limit via a neighbouring representation: evaluate x and its
-    // derivatives by OpenSubdiv through a mesh copy where this face is forced irregular is not
-    // possible; instead check partition of unity and reproduction of a linear field.
-    double sum = 0, dsum = 0;
-    Point3 x = Point3::Zero(), xu = Point3::Zero();
-    for (int i = 0; i < 16; ++i) {
-      sum += w[kValue][i];
-      dsum += w[kDu][i] + w[kDuu][i];
-      x += w[kValue][i] * mesh.points[eval.regular_nodes(f)[i]];
-      xu += w[kDu][i] * mesh.points[eval.regular_nodes(f)[i]];
+TEST(Subdivision, RegularBasisIsPartitionOfUnityWithLinearPrecision) {
+  // On an affinely mapped cage the limit surface is the same affine map of the parameter plane
+  // (Catmull–Clark reproduces linear functions): check values and derivatives on every face.
+  QuadMesh cage = add_ghost_ring(make_rectangle_cage(2.0, 1.0, 4, 4, 0.0, 0.0));
+  Eigen::Matrix3d A;
+  A << 1.0, 0.3, 0.0, -0.2, 0.9, 0.0, 0.1, 0.05, 1.0;
+  for (Point3& p : cage.points) p = A * p;
+  Discretization d(SubdivisionHierarchy(cage, 1).finest(), 3);
+  const double h = 2.0 / 8, k = 1.0 / 8;  // refined face size in the parameter plane
+  for (int f : d.elements()) {
+    const SurfacePoint p{f, 0.3, 0.7};
+    const PointBasis b = d.evaluator().evaluate({p})[0];
+    double sum = 0.0, dsum = 0.0;
+    for (int i = 0; i < b.size(); ++i) {
+      sum += b.w[kValue][i];
+      for (int dd = kDu; dd <= kDvv; ++dd) dsum += b.w[dd][i];  // derivatives of a constant
     }
     EXPECT_NEAR(sum, 1.0, 1e-14);
-    EXPECT_NEAR(dsum, 0.0, 1e-13);
-    ++compared;
+    EXPECT_NEAR(dsum, 0.0, 1e-12);
+    // Corner 0 of the face and its edge directions in the (unmapped) plane.
+    const Quad& q = d.mesh().quads[f];
+    const Point3 x0 = d.mesh().points[q[0]];
+    const Point3 eu = d.mesh().points[q[1]] - x0, ev = d.mesh().points[q[3]] - x0;
+    EXPECT_LT((b.apply(kValue, d.mesh().points) - (x0 + 0.3 * eu + 0.7 * ev)).norm(), 1e-13);
+    EXPECT_LT((b.apply(kDu, d.mesh().points) - eu).norm(), 1e-13);
+    EXPECT_LT((b.apply(kDv, d.mesh().points) - ev).norm(), 1e-13);
+    EXPECT_LT(b.apply(kDuv, d.mesh().points).norm(), 1e-12);
+    EXPECT_NEAR(eu.norm(), (A * Point3(h, 0, 0)).norm(), 1e-13);
+    EXPECT_NEAR(ev.norm(), (A * Point3(0, k, 0)).norm(), 1e-13);
   }
-  EXPECT_GT(compared, 0);
 }
 
 TEST(Subdivision, LimitStencilsAreSmoothAcrossRegularAndIrregularFaces) {
   for (int valence : {3, 5, 6, 8}) {
     QuadMesh mesh = SubdivisionHierarchy(add_ghost_ring(fan_cage(valence)), 1).finest();
     Discretization d(mesh, 3);
-    LimitEvaluator& eval = const_cast<LimitEvaluator&>(d.evaluator());
+    const LimitEvaluator& eval = d.evaluator();
     ASSERT_GT(eval.num_irregular_faces(), 0) << valence;
     // Position and tangent continuity across every interior edge between two interior faces:
     // evaluate both sides at the edge midpoint.
@@ -123,7 +101,6 @@ TEST(Subdivision, LimitStencilsAreSmoothAcrossRegularAndIrregularFaces) {
         const Point3 nf = b[0].apply(kDu, mesh.points).cross(b[0].apply(kDv, mesh.points)).normalized();
         const Point3 ng = b[1].apply(kDu, mesh.points).cross(b[1].apply(kDv, mesh.points)).normalized();
         EXPECT_GT(nf.dot(ng), 1.0 - 1e-10) << "valence " << valence;
-        for (int i = 0; i < b[0].size(); ++i) (void)i;
         double sum = 0;
         for (double x : b[0].w[kValue]) sum += x;
         EXPECT_NEAR(sum, 1.0, 1e-12);
