@@ -4,9 +4,7 @@
 # Results go to out/trampoline/ (summary.json, steps.csv, trampoline.xdmf for ParaView, OBJ frames).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash .ci/deps
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j "$(nproc)"
+bash .ci/build
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mpiexec --oversubscribe -n 2 build/mlshell examples/trampoline.yaml "$@"
 echo "Open out/trampoline/trampoline.xdmf in ParaView; per-step statistics: out/trampoline/steps.csv; summary: out/trampoline/summary.json"

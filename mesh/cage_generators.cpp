@@ -5,8 +5,8 @@
 
 namespace mlshell {
 
-QuadMesh make_l_shape_cage(double width, double height, int nx, int ny, double cut_x,
-                           double cut_y, double x0, double y0) {
+QuadMesh make_l_shape_cage(double width, double height, int nx, int ny, double cut_x, double cut_y,
+                           double x0, double y0) {
   const double hx = width / nx, hy = height / ny;
   // Faces with index i >= keep_x and j >= keep_y are cut away.
   const int keep_x = nx - static_cast<int>(std::lround(cut_x / hx));

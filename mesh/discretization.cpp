@@ -23,12 +23,11 @@ GaussRule::GaussRule(int n) {
       {2.0},
       {1.0, 1.0},
       {0.5555555555555555556, 0.8888888888888888889, 0.5555555555555555556},
-      {0.3478548451374538574, 0.6521451548625461426, 0.6521451548625461426,
-       0.3478548451374538574},
-      {0.2369268850561890875, 0.4786286704993664680, 0.5688888888888888889,
-       0.4786286704993664680, 0.2369268850561890875},
-      {0.1713244923791703450, 0.3607615730481386076, 0.4679139345726910474,
-       0.4679139345726910474, 0.3607615730481386076, 0.1713244923791703450}};
+      {0.3478548451374538574, 0.6521451548625461426, 0.6521451548625461426, 0.3478548451374538574},
+      {0.2369268850561890875, 0.4786286704993664680, 0.5688888888888888889, 0.4786286704993664680,
+       0.2369268850561890875},
+      {0.1713244923791703450, 0.3607615730481386076, 0.4679139345726910474, 0.4679139345726910474,
+       0.3607615730481386076, 0.1713244923791703450}};
   if (n < 1 || n > 6) throw std::invalid_argument("Gauss rule with 1..6 points only");
   for (int i = 0; i < n; ++i) {
     points.push_back(0.5 * (x[n - 1][i] + 1.0));
@@ -37,7 +36,9 @@ GaussRule::GaussRule(int n) {
 }
 
 Discretization::Discretization(QuadMesh mesh, int gauss)
-    : mesh_(std::move(mesh)), gauss_(gauss), gauss_n_(gauss),
+    : mesh_(std::move(mesh)),
+      gauss_(gauss),
+      gauss_n_(gauss),
       irregular_index_(mesh_.num_faces(), -1) {
   if (gauss < 2 || gauss > 6) throw std::invalid_argument("Gauss points per direction: 2..6");
   evaluator_ = std::make_unique<LimitEvaluator>(mesh_);
@@ -50,7 +51,8 @@ Discretization::Discretization(QuadMesh mesh, int gauss)
     for (int k = 0; k < 4; ++k) {
       const int g = adj.across(f, k);
       if (g < 0 || mesh_.is_ghost(g)) boundary_edges_.push_back({f, k});
-      edge_sum += (mesh_.points[mesh_.quads[f][(k + 1) % 4]] - mesh_.points[mesh_.quads[f][k]]).norm();
+      edge_sum +=
+          (mesh_.points[mesh_.quads[f][(k + 1) % 4]] - mesh_.points[mesh_.quads[f][k]]).norm();
       ++edge_count;
     }
   }
@@ -120,10 +122,14 @@ std::vector<int> Discretization::stencil(int face) const {
 SurfacePoint Discretization::edge_point(const BoundaryEdge& e, double s) const {
   // Corners 0..3 sit at (0,0), (1,0), (1,1), (0,1); edge k runs from corner k to corner k+1.
   switch (e.edge) {
-    case 0: return {e.face, s, 0.0};
-    case 1: return {e.face, 1.0, s};
-    case 2: return {e.face, 1.0 - s, 1.0};
-    default: return {e.face, 0.0, 1.0 - s};
+    case 0:
+      return {e.face, s, 0.0};
+    case 1:
+      return {e.face, 1.0, s};
+    case 2:
+      return {e.face, 1.0 - s, 1.0};
+    default:
+      return {e.face, 0.0, 1.0 - s};
   }
 }
 

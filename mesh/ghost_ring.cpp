@@ -85,8 +85,9 @@ QuadMesh add_ghost_ring(const QuadMesh& interior) {
     if (info.next[v] < 0 || info.faces[v] != 3) continue;
     const int u = info.prev[v], w = info.next[v];
     if (ghost_of[u] < 0 || ghost_of[w] < 0)
-      throw MeshError("cannot add a ghost ring: re-entrant corner next to another corner at vertex " +
-                      std::to_string(v + 1) + "; refine the cage once");
+      throw MeshError(
+          "cannot add a ghost ring: re-entrant corner next to another corner at vertex " +
+          std::to_string(v + 1) + "; refine the cage once");
     const int merged = ghost_of[u];
     mesh.points[merged] = 0.5 * (mesh.points[ghost_of[u]] + mesh.points[ghost_of[w]]);
     // The replaced vertex stays as an unused point; drop it below.

@@ -1,15 +1,15 @@
 // Limit-surface basis functions: bicubic B-splines on regular faces, OpenSubdiv limit stencils
 // (feature-adaptive, isolation level 4) on faces touching extraordinary vertices.
-#include <algorithm>
-#include <map>
-#include <stdexcept>
-#include <utility>
-
 #include <opensubdiv/far/ptexIndices.h>
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <utility>
 
 #include "mlshell/limit_basis.hpp"
 

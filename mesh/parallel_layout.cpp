@@ -1,12 +1,12 @@
 // METIS partition of the elements and the PETSc objects that move data between ranks.
 #include "mlshell/parallel_layout.hpp"
 
+#include <metis.h>
+
 #include <algorithm>
 #include <numeric>
 #include <set>
 #include <stdexcept>
-
-#include <metis.h>
 
 namespace mlshell {
 
@@ -36,9 +36,9 @@ std::vector<int> partition_elements(const Discretization& disc, int parts) {
   options[METIS_OPTION_SEED] = 7;  // deterministic partitions
   options[METIS_OPTION_NUMBERING] = 0;
   if (n >= parts) {
-    const int status = METIS_PartGraphKway(&n, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr,
-                                           nullptr, &nparts, nullptr, nullptr, options, &objval,
-                                           part.data());
+    const int status =
+        METIS_PartGraphKway(&n, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, nullptr,
+                            &nparts, nullptr, nullptr, options, &objval, part.data());
     if (status != METIS_OK) throw std::runtime_error("METIS failed to partition the elements");
   }
   for (idx_t e = 0; e < n; ++e) owner[elements[e]] = static_cast<int>(part[e]);
@@ -79,7 +79,8 @@ ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc)
   for (int v = 0; v < np; ++v)
     if (local[v] && point_owner[v] != rank_) local_points_.push_back(v);
   local_of_natural_.assign(np, -1);
-  for (size_t i = 0; i < local_points_.size(); ++i) local_of_natural_[local_points_[i]] = static_cast<int>(i);
+  for (size_t i = 0; i < local_points_.size(); ++i)
+    local_of_natural_[local_points_[i]] = static_cast<int>(i);
 
   std::vector<PetscInt> blocks(local_points_.size());
   for (size_t i = 0; i < local_points_.size(); ++i) blocks[i] = petsc_of_natural_[local_points_[i]];
@@ -98,9 +99,11 @@ ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc)
   if (rank_ == 0) natural_blocks.assign(petsc_of_natural_.begin(), petsc_of_natural_.end());
   PetscCallAbort(comm, VecCreateSeq(PETSC_COMM_SELF, rank_ == 0 ? 3 * np : 0, &natural_work_));
   IS nat;
-  PetscCallAbort(comm, ISCreateBlock(PETSC_COMM_SELF, 3, static_cast<PetscInt>(natural_blocks.size()),
-                                     natural_blocks.data(), PETSC_COPY_VALUES, &nat));
-  PetscCallAbort(comm, VecScatterCreate(global_template_, nat, natural_work_, nullptr, &to_natural_));
+  PetscCallAbort(comm,
+                 ISCreateBlock(PETSC_COMM_SELF, 3, static_cast<PetscInt>(natural_blocks.size()),
+                               natural_blocks.data(), PETSC_COPY_VALUES, &nat));
+  PetscCallAbort(comm,
+                 VecScatterCreate(global_template_, nat, natural_work_, nullptr, &to_natural_));
   PetscCallAbort(comm, ISDestroy(&nat));
 }
 
@@ -192,7 +195,8 @@ PetscErrorCode ParallelLayout::gather_natural(Vec global, std::vector<double>& n
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ParallelLayout::scatter_natural(const std::vector<double>& natural, Vec global) const {
+PetscErrorCode ParallelLayout::scatter_natural(const std::vector<double>& natural,
+                                               Vec global) const {
   PetscFunctionBeginUser;
   if (rank_ == 0) {
     PetscCheck(natural.size() == static_cast<size_t>(3 * disc_.num_points()), PETSC_COMM_SELF,

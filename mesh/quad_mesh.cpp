@@ -55,8 +55,8 @@ void validate_quad_mesh(const QuadMesh& mesh, const std::string& source) {
     for (int k = 0; k < 4; ++k) {
       if (q[k] < 0 || q[k] >= nv) {
         std::ostringstream m;
-        m << source << ": face " << f + 1 << " refers to vertex " << q[k] + 1 << " but the cage has "
-          << nv << " vertices";
+        m << source << ": face " << f + 1 << " refers to vertex " << q[k] + 1
+          << " but the cage has " << nv << " vertices";
         throw MeshError(m.str());
       }
     }
@@ -68,8 +68,8 @@ void validate_quad_mesh(const QuadMesh& mesh, const std::string& source) {
             << " appears twice";
           throw MeshError(m.str());
         }
-    const Point3 area = (mesh.points[q[2]] - mesh.points[q[0]])
-                            .cross(mesh.points[q[3]] - mesh.points[q[1]]);
+    const Point3 area =
+        (mesh.points[q[2]] - mesh.points[q[0]]).cross(mesh.points[q[3]] - mesh.points[q[1]]);
     double scale = 0.0;
     for (int k = 0; k < 4; ++k)
       scale = std::max(scale, (mesh.points[q[(k + 1) % 4]] - mesh.points[q[k]]).squaredNorm());
@@ -105,8 +105,7 @@ void validate_quad_mesh(const QuadMesh& mesh, const std::string& source) {
   for (int v = 0; v < nv; ++v)
     if (out_boundary[v] > 1 || in_boundary[v] > 1) {
       std::ostringstream m;
-      m << source << ": vertex " << v + 1
-        << " is non-manifold (its faces form more than one fan)";
+      m << source << ": vertex " << v + 1 << " is non-manifold (its faces form more than one fan)";
       throw MeshError(m.str());
     }
   // A vertex whose faces form several fans meeting only at it, with no boundary edges, is not
@@ -126,8 +125,7 @@ void validate_quad_mesh(const QuadMesh& mesh, const std::string& source) {
     }
     if (seen.size() != faces.size()) {
       std::ostringstream m;
-      m << source << ": vertex " << v + 1
-        << " is non-manifold (its faces form more than one fan)";
+      m << source << ": vertex " << v + 1 << " is non-manifold (its faces form more than one fan)";
       throw MeshError(m.str());
     }
   }

@@ -1,11 +1,10 @@
 // Boundary sides, boxes, corners and nearest points on the reference limit surface.
 #include "mlshell/selection.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-
-#include <Eigen/Dense>
 
 namespace mlshell {
 
@@ -61,13 +60,18 @@ std::vector<BoundaryEdge> select_curve(const Discretization& disc, const CurveSe
       };
       const double x1 = frame.x0 + frame.width, y1 = frame.y0 + frame.height;
       const double nx = x1 - frame.cut_x, ny = y1 - frame.cut_y;
-      if (sel.side == "left") take = on(0, frame.x0);
-      else if (sel.side == "right") take = on(0, x1);
-      else if (sel.side == "bottom") take = on(1, frame.y0);
-      else if (sel.side == "top") take = on(1, y1);
+      if (sel.side == "left")
+        take = on(0, frame.x0);
+      else if (sel.side == "right")
+        take = on(0, x1);
+      else if (sel.side == "bottom")
+        take = on(1, frame.y0);
+      else if (sel.side == "top")
+        take = on(1, y1);
       else if (sel.side == "re-entrant")
         take = (on(0, nx) && geo[e][2][1] > ny - tol) || (on(1, ny) && geo[e][2][0] > nx - tol);
-      else empty_selection(where, "unknown side '" + sel.side + "'");
+      else
+        empty_selection(where, "unknown side '" + sel.side + "'");
     }
     if (take) out.push_back(edges[e]);
   }
@@ -108,11 +112,14 @@ SurfacePoint nearest_surface_point(const Discretization& disc, const Point3& tar
       const Point3 r = b.apply(kValue, mesh.points) - target;
       const Point3 xu = b.apply(kDu, mesh.points), xv = b.apply(kDv, mesh.points);
       Eigen::Matrix2d H;
-      H << xu.dot(xu) + r.dot(b.apply(kDuu, mesh.points)), xu.dot(xv) + r.dot(b.apply(kDuv, mesh.points)),
-          xu.dot(xv) + r.dot(b.apply(kDuv, mesh.points)), xv.dot(xv) + r.dot(b.apply(kDvv, mesh.points));
+      H << xu.dot(xu) + r.dot(b.apply(kDuu, mesh.points)),
+          xu.dot(xv) + r.dot(b.apply(kDuv, mesh.points)),
+          xu.dot(xv) + r.dot(b.apply(kDuv, mesh.points)),
+          xv.dot(xv) + r.dot(b.apply(kDvv, mesh.points));
       const Eigen::Vector2d g(xu.dot(r), xv.dot(r));
       Eigen::Vector2d step = -H.ldlt().solve(g);
-      if (!step.allFinite() || H.determinant() <= 0) step = -g / std::max(xu.squaredNorm(), xv.squaredNorm());
+      if (!step.allFinite() || H.determinant() <= 0)
+        step = -g / std::max(xu.squaredNorm(), xv.squaredNorm());
       const double u = std::clamp(p.u + step[0], 0.0, 1.0), v = std::clamp(p.v + step[1], 0.0, 1.0);
       if (std::abs(u - p.u) + std::abs(v - p.v) < 1e-15) break;
       p.u = u, p.v = v;
@@ -131,7 +138,8 @@ SurfacePoint select_point(const Discretization& disc, const PointSelection& sel,
   bool must_hit = false;
   if (sel.kind != PointSelection::Kind::At) {
     if (!frame.generated)
-      empty_selection(where, "corners and point(u, v) exist only for generated cages; use {at: [x, y, z]}");
+      empty_selection(
+          where, "corners and point(u, v) exist only for generated cages; use {at: [x, y, z]}");
     must_hit = true;
     if (sel.kind == PointSelection::Kind::Param) {
       target = {frame.x0 + sel.param[0] * frame.width, frame.y0 + sel.param[1] * frame.height, 0.0};

@@ -3,13 +3,13 @@
 // points of level l (the outer ghost ring never feeds the inner one), which is checked here.
 #include "mlshell/subdivision_hierarchy.hpp"
 
-#include <cmath>
-#include <map>
-#include <memory>
-
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
 
 namespace mlshell {
 

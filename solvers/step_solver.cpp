@@ -39,7 +39,8 @@ StepSolver::StepSolver(LevelProblem& problem) : problem_(problem) {
   PetscCallAbort(comm, default_option("-tao_max_it", "1000"));
   PetscCallAbort(comm, TaoCreate(comm, &tao_));
   PetscCallAbort(comm, problem.create_matrix(&H_));
-  PetscCallAbort(comm, TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &problem_));
+  PetscCallAbort(comm,
+                 TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &problem_));
   PetscCallAbort(comm, TaoSetObjective(tao_, objective_only, &problem_));
   PetscCallAbort(comm, TaoSetHessian(tao_, H_, H_, hessian, &problem_));
   PetscCallAbort(comm, TaoSetFromOptions(tao_));

@@ -3,8 +3,6 @@
 # whole suite (GoogleTest units, the 2-rank MPI tests, and the command-line tests) with ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash .ci/deps
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j "$(nproc)"
+bash .ci/build
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cd build && ctest --output-on-failure -j "$(nproc)" "$@"

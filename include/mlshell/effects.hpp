@@ -45,7 +45,9 @@ class InertiaTerm final : public EnergyTerm {
   InertiaTerm(const Discretization& disc, const ParallelLayout& layout, double area_density,
               double dt);
   /// Sets û from local predictor values (3 per local point).
-  void set_predictor(std::vector<double> local_predictor) { predictor_ = std::move(local_predictor); }
+  void set_predictor(std::vector<double> local_predictor) {
+    predictor_ = std::move(local_predictor);
+  }
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
 
@@ -78,9 +80,9 @@ class LinearLoadTerm final : public EnergyTerm {
 /// selected point, with its basis on local nodes.
 struct PenaltySample {
   std::vector<PetscInt> nodes;
-  std::vector<double> value;   ///< N_i at the point
-  std::vector<double> conormal;///< ∂_ν N_i (clamp rotation), empty otherwise
-  double weight = 0.0;         ///< β × quadrature weight × arc length (β for single points)
+  std::vector<double> value;     ///< N_i at the point
+  std::vector<double> conormal;  ///< ∂_ν N_i (clamp rotation), empty otherwise
+  double weight = 0.0;           ///< β × quadrature weight × arc length (β for single points)
   double rotation_weight = 0.0;
 };
 

@@ -7,11 +7,11 @@
 // sums into the global vector, and adds element Hessians with local block indices.
 #pragma once
 
+#include <petscmat.h>
+
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <petscmat.h>
 
 #include "mlshell/discretization.hpp"
 #include "mlshell/parallel_layout.hpp"

@@ -3,11 +3,11 @@
 // Hessian — never a mesh.
 #pragma once
 
+#include <petscmat.h>
+
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <petscmat.h>
 
 #include "mlshell/energy_term.hpp"
 

@@ -3,10 +3,9 @@
 // Strain vector order: (Ẽ11, Ẽ22, Ẽ12) with tensor (not engineering) shear Ẽ12.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <memory>
-
-#include <Eigen/Core>
 
 #include "mlshell/scene.hpp"
 

@@ -108,8 +108,8 @@ class Json {
 
 /// State saved for restart: natural-order displacements and velocities of all control points.
 struct Checkpoint {
-  int step = 0;          ///< the completed step
-  double time = 0.0;     ///< time at that step
+  int step = 0;                         ///< the completed step
+  double time = 0.0;                    ///< time at that step
   std::uint64_t scene_fingerprint = 0;  ///< hash of the discretization (dofs + reference geometry)
   std::vector<double> displacement;     ///< 3 per control point
   std::vector<double> velocity;         ///< 3 per control point (zeros without inertia)

@@ -8,9 +8,9 @@
 // vectors with a reverse scatter, and into block-size-3 AIJ matrices with local block indices.
 #pragma once
 
-#include <vector>
-
 #include <petscmat.h>
+
+#include <vector>
 
 #include "mlshell/discretization.hpp"
 

@@ -5,14 +5,13 @@
 // carries the control points that the interior faces' one-rings need (paper §5.2.1, Fig. 4c).
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace mlshell {
 
@@ -26,9 +25,9 @@ using Point3 = Eigen::Vector3d;
 using Quad = std::array<int, 4>;
 
 struct QuadMesh {
-  std::vector<Point3> points;   ///< #V control points
-  std::vector<Quad> quads;      ///< #F faces, counter-clockwise seen from the normal side
-  std::vector<char> ghost;      ///< #F: 1 for a ghost face (not part of the simulated domain)
+  std::vector<Point3> points;  ///< #V control points
+  std::vector<Quad> quads;     ///< #F faces, counter-clockwise seen from the normal side
+  std::vector<char> ghost;     ///< #F: 1 for a ghost face (not part of the simulated domain)
 
   int num_points() const { return static_cast<int>(points.size()); }
   int num_faces() const { return static_cast<int>(quads.size()); }
@@ -63,8 +62,8 @@ void validate_quad_mesh(const QuadMesh& mesh, const std::string& source);
 QuadMesh make_rectangle_cage(double width, double height, int nx, int ny, double x0, double y0);
 
 /// The rectangle minus its top-right cut_x × cut_y block (a re-entrant corner).
-QuadMesh make_l_shape_cage(double width, double height, int nx, int ny, double cut_x,
-                           double cut_y, double x0, double y0);
+QuadMesh make_l_shape_cage(double width, double height, int nx, int ny, double cut_x, double cut_y,
+                           double x0, double y0);
 
 /// Reads a plain OBJ (v and f lines; f entries may be `i`, `i/t`, `i//n`, `i/t/n`, negative
 /// indices allowed; other lines ignored). Faces that are not quads are rejected: OpenSubdiv 3.5

@@ -2,7 +2,8 @@
 //
 // parse_scene() reads and validates the YAML file; it never touches PETSc, so it runs (and is
 // tested) without MPI. Every error is a SceneError whose message names the file, the line, the key
-// path (e.g. `effects[2].dirichlet.components`) and the offending value, and says what was expected.
+// path (e.g. `effects[2].dirichlet.components`) and the offending value, and says what was
+// expected.
 //
 // Units are SI throughout (m, kg, s, N, Pa); the denim preset converts the paper's Table 1 units.
 #pragma once
@@ -58,13 +59,14 @@ struct GeometrySpec {
 // ----------------------------------------------------------------------------------------------
 // Material
 
-/// `{model: clyde-orthotropic, preset: denim, thickness, density, warp: [1,0,0]}` — eq. (3.3)–(3.4).
-/// With a preset, k/d/mu/alpha come from the preset; any of k, mu, alpha may be given explicitly
-/// instead (then all four phi_j must be given: `mu: [[...],[...],[...],[...]]`, same for alpha).
+/// `{model: clyde-orthotropic, preset: denim, thickness, density, warp: [1,0,0]}` — eq.
+/// (3.3)–(3.4). With a preset, k/d/mu/alpha come from the preset; any of k, mu, alpha may be given
+/// explicitly instead (then all four phi_j must be given: `mu: [[...],[...],[...],[...]]`, same for
+/// alpha).
 struct ClydeMaterial {
-  std::array<double, 4> k{};                      ///< Pa (the paper's Table 1 gives MPa)
-  std::array<std::vector<double>, 4> mu;           ///< mu_ji, i = 1..d_j
-  std::array<std::vector<double>, 4> alpha;        ///< alpha_ji
+  std::array<double, 4> k{};                 ///< Pa (the paper's Table 1 gives MPa)
+  std::array<std::vector<double>, 4> mu;     ///< mu_ji, i = 1..d_j
+  std::array<std::vector<double>, 4> alpha;  ///< alpha_ji
 };
 
 /// `{model: isotropic-svk, youngs_modulus: E, poisson_ratio: nu, thickness, density}`
@@ -75,11 +77,11 @@ struct SvkMaterial {
 
 struct MaterialSpec {
   std::variant<ClydeMaterial, SvkMaterial> model;
-  std::string preset;           ///< "denim" or empty
-  double thickness = 0.0;       ///< m, > 0
-  double density = 0.0;         ///< area density kg/m², >= 0
-  Vec3 warp{1.0, 0.0, 0.0};     ///< projected onto the reference tangent plane: material direction o1
-  int thickness_points = 3;     ///< Gauss points through the thickness, 1..8
+  std::string preset;        ///< "denim" or empty
+  double thickness = 0.0;    ///< m, > 0
+  double density = 0.0;      ///< area density kg/m², >= 0
+  Vec3 warp{1.0, 0.0, 0.0};  ///< projected onto the reference tangent plane: material direction o1
+  int thickness_points = 3;  ///< Gauss points through the thickness, 1..8
 };
 
 /// Table 1 of the paper (denim), in SI units (k converted from MPa to Pa), with mu_j1 completed
@@ -99,9 +101,9 @@ struct CurveSelection {
 /// A single point of the surface.
 struct PointSelection {
   enum class Kind { At, Corner, Param } kind = Kind::At;
-  Vec3 at{};                            ///< Kind::At: nearest point of the reference limit surface
-  std::string corner;                   ///< Kind::Corner: bottom-left|bottom-right|top-left|top-right
-  std::array<double, 2> param{};        ///< Kind::Param: (u, v) in [0,1]² of a generated cage's domain
+  Vec3 at{};                      ///< Kind::At: nearest point of the reference limit surface
+  std::string corner;             ///< Kind::Corner: bottom-left|bottom-right|top-left|top-right
+  std::array<double, 2> param{};  ///< Kind::Param: (u, v) in [0,1]² of a generated cage's domain
 };
 
 using Selection = std::variant<CurveSelection, PointSelection>;
@@ -128,10 +130,23 @@ struct Motion {
 };
 
 struct InertiaEffect {};
-struct GravityEffect { Vec3 acceleration{0, 0, -9.81}; };
-struct SurfaceLoadEffect { Vec3 force_per_area{}; bool ramp = false; };
-struct LineLoadEffect { Where where; Vec3 force_per_length{}; bool ramp = false; };
-struct PointLoadEffect { Where where; Vec3 force{}; bool ramp = false; };
+struct GravityEffect {
+  Vec3 acceleration{0, 0, -9.81};
+};
+struct SurfaceLoadEffect {
+  Vec3 force_per_area{};
+  bool ramp = false;
+};
+struct LineLoadEffect {
+  Where where;
+  Vec3 force_per_length{};
+  bool ramp = false;
+};
+struct PointLoadEffect {
+  Where where;
+  Vec3 force{};
+  bool ramp = false;
+};
 
 /// Penalty Dirichlet condition (paper eq. 3.6) with beta = h^-sigma unless `penalty` is given.
 /// `dirichlet: {where, components: [x, y, z], motion: {...}, sigma: 5, penalty: 1e8}`
@@ -139,8 +154,8 @@ struct DirichletEffect {
   Where where;
   std::array<bool, 3> components{true, true, true};
   std::optional<Motion> motion;
-  double sigma = 5.0;              ///< > 0
-  std::optional<double> penalty;   ///< explicit beta > 0 (overrides sigma)
+  double sigma = 5.0;             ///< > 0
+  std::optional<double> penalty;  ///< explicit beta > 0 (overrides sigma)
 };
 
 /// Clamp: displacement and rotation (the slope across the boundary) held by penalties.
@@ -179,11 +194,11 @@ struct Probe {
 };
 
 struct OutputSpec {
-  std::filesystem::path dir = "out";        ///< resolved relative to the working directory
-  int every = 1;                            ///< write frames every N steps (the last step always)
+  std::filesystem::path dir = "out";  ///< resolved relative to the working directory
+  int every = 1;                      ///< write frames every N steps (the last step always)
   std::vector<std::string> formats{"xdmf", "obj", "csv"};  ///< subset of xdmf|obj|csv
-  int samples_per_face = 4;                 ///< limit-surface grid per face for xdmf/obj, 1..16
-  int checkpoint_every = 0;                 ///< 0: no checkpoints
+  int samples_per_face = 4;  ///< limit-surface grid per face for xdmf/obj, 1..16
+  int checkpoint_every = 0;  ///< 0: no checkpoints
 };
 
 /// `solver: {options_file: path}` — PETSc options are the main knob (tolerances included).

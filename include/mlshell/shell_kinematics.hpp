@@ -26,10 +26,10 @@ using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 /// Reference midsurface quantities at one quadrature point.
 struct ShellReference {
-  Eigen::Vector3d a[5];   ///< ā_1, ā_2, ā_11, ā_12, ā_22
-  Eigen::Vector3d normal; ///< ā_3
-  double area = 0.0;      ///< J̄ = |ā_1 × ā_2|
-  Eigen::Matrix3d T;      ///< (E11, E12, E22) → (Ẽ11, Ẽ22, Ẽ12)
+  Eigen::Vector3d a[5];    ///< ā_1, ā_2, ā_11, ā_12, ā_22
+  Eigen::Vector3d normal;  ///< ā_3
+  double area = 0.0;       ///< J̄ = |ā_1 × ā_2|
+  Eigen::Matrix3d T;       ///< (E11, E12, E22) → (Ẽ11, Ẽ22, Ẽ12)
   /// From the reference derivatives and the warp direction (projected to the tangent plane).
   static ShellReference from(const Eigen::Vector3d a[5], const Eigen::Vector3d& warp);
 };

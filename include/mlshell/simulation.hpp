@@ -11,11 +11,11 @@
 //   -mlshell_quiet               no per-step progress lines
 #pragma once
 
+#include <petscvec.h>
+
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <petscvec.h>
 
 #include "mlshell/discretization.hpp"
 #include "mlshell/effect_builder.hpp"
@@ -54,7 +54,7 @@ class Simulation {
   PetscErrorCode set_initial_state();
   PetscErrorCode evaluate(int* status);
   PetscErrorCode step(int n, SolveReport& report);
-  PetscErrorCode write_frame(int n, double t, bool force);
+  PetscErrorCode write_frame(int n, double t, bool force, bool converged);
   PetscErrorCode write_summary(const std::string& status, const SolveReport* last);
 
   MPI_Comm comm_;

@@ -9,9 +9,9 @@
 // factorisation (the recursive multilevel trust region arrives with its own TAO type).
 #pragma once
 
-#include <string>
-
 #include <petsctao.h>
+
+#include <string>
 
 #include "mlshell/level_problem.hpp"
 
@@ -19,7 +19,7 @@ namespace mlshell {
 
 struct SolveReport {
   bool converged = false;
-  std::string reason;        ///< TAO's converged reason, e.g. CONVERGED_GATOL
+  std::string reason;  ///< TAO's converged reason, e.g. CONVERGED_GATOL
   int iterations = 0;
   int linear_iterations = 0;
   double energy = 0.0;

@@ -2,9 +2,8 @@
 // (paper §5.1, §5.2.1, Fig. 5), and the subdivision matrices between neighbouring levels.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/SparseCore>
+#include <vector>
 
 #include "mlshell/quad_mesh.hpp"
 

@@ -37,7 +37,8 @@ const char* kUsage =
     "                              one (solver.options_file); the command line wins over both\n"
     "\n"
     "Solver options (TAO, prefix -tao_): default -tao_type bntr with -tao_bnk_ksp_type stcg,\n"
-    "  -tao_bnk_pc_type lu -tao_bnk_pc_factor_mat_solver_type mumps, -tao_gatol 1e-7 -tao_gttol 1e-10\n"
+    "  -tao_bnk_pc_type lu -tao_bnk_pc_factor_mat_solver_type mumps, -tao_gatol 1e-7 -tao_gttol "
+    "1e-10\n"
     "  -tao_max_it 1000. Useful: -tao_monitor, -tao_view, -tao_type bnls|nls|lmvm,\n"
     "  -log_view (one event per effect: Effect:elastic, Effect:gravity, ...).\n"
     "\n"
@@ -76,23 +77,29 @@ int main(int argc, char** argv) {
     mlshell::Scene scene = mlshell::parse_scene(scene_path);
     if (scene.solver.options_file) {
       // The scene's options file first, then the command line again so that it wins.
-      PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsInsertFile(PETSC_COMM_WORLD, nullptr,
-                                                              scene.solver.options_file->c_str(), PETSC_TRUE));
+      PetscCallAbort(PETSC_COMM_WORLD,
+                     PetscOptionsInsertFile(PETSC_COMM_WORLD, nullptr,
+                                            scene.solver.options_file->c_str(), PETSC_TRUE));
       PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsInsert(nullptr, &argc, &argv, nullptr));
     }
     char dir[PETSC_MAX_PATH_LEN];
     PetscBool has_dir = PETSC_FALSE;
-    PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetString(nullptr, nullptr, "-mlshell_output_dir", dir,
-                                                           sizeof dir, &has_dir));
+    PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetString(nullptr, nullptr, "-mlshell_output_dir",
+                                                           dir, sizeof dir, &has_dir));
     if (has_dir) scene.output.dir = dir;
     PetscInt steps = scene.time.steps;
-    PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetInt(nullptr, nullptr, "-mlshell_steps", &steps, nullptr));
-    if (steps < 1) throw mlshell::SceneError("-mlshell_steps: must be >= 1; got '" + std::to_string(steps) + "'");
+    PetscCallAbort(PETSC_COMM_WORLD,
+                   PetscOptionsGetInt(nullptr, nullptr, "-mlshell_steps", &steps, nullptr));
+    if (steps < 1)
+      throw mlshell::SceneError("-mlshell_steps: must be >= 1; got '" + std::to_string(steps) +
+                                "'");
     scene.time.steps = static_cast<int>(steps);
     PetscReal dt = scene.time.dt;
-    PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetReal(nullptr, nullptr, "-mlshell_dt", &dt, nullptr));
+    PetscCallAbort(PETSC_COMM_WORLD,
+                   PetscOptionsGetReal(nullptr, nullptr, "-mlshell_dt", &dt, nullptr));
     if (!(dt > 0.0) || !std::isfinite(dt))
-      throw mlshell::SceneError("-mlshell_dt: must be a positive number; got '" + std::to_string(dt) + "'");
+      throw mlshell::SceneError("-mlshell_dt: must be a positive number; got '" +
+                                std::to_string(dt) + "'");
     scene.time.dt = dt;
     mlshell::Simulation sim(PETSC_COMM_WORLD, std::move(scene),
                             mlshell::SimulationOptions::from_petsc_options());

@@ -56,8 +56,7 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
   auto fail = [&](const std::string& what, int err) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
-    throw OutputError("cannot write '" + path.string() + "': " + what + ": " +
-                      std::strerror(err));
+    throw OutputError("cannot write '" + path.string() + "': " + what + ": " + std::strerror(err));
   };
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) {

@@ -44,9 +44,12 @@ void CsvTable::append(const std::vector<std::variant<double, long long, std::str
   std::string line;
   for (std::size_t i = 0; i < row.size(); ++i) {
     if (i) line += ',';
-    if (const auto* d = std::get_if<double>(&row[i])) line += io_detail::format_double(*d);
-    else if (const auto* n = std::get_if<long long>(&row[i])) line += std::to_string(*n);
-    else line += csv_field(std::get<std::string>(row[i]));
+    if (const auto* d = std::get_if<double>(&row[i]))
+      line += io_detail::format_double(*d);
+    else if (const auto* n = std::get_if<long long>(&row[i]))
+      line += std::to_string(*n);
+    else
+      line += csv_field(std::get<std::string>(row[i]));
   }
   line += '\n';
   // Commit the row to memory only once it is on disk, so a failed append can be retried

@@ -34,8 +34,8 @@ void check_petsc(PetscErrorCode ierr, const std::filesystem::path& file, const c
   if (ierr == 0) return;
   const char* text = nullptr;
   PetscErrorMessage(ierr, &text, nullptr);
-  throw OutputError("cannot write '" + file.string() + "': " + call + " failed: " +
-                    (text ? text : "unknown PETSc error") + " (PETSc error " +
+  throw OutputError("cannot write '" + file.string() + "': " + call +
+                    " failed: " + (text ? text : "unknown PETSc error") + " (PETSc error " +
                     std::to_string(static_cast<int>(ierr)) + ")");
 }
 
@@ -64,9 +64,9 @@ PetscInt to_petsc_size(std::size_t n, const std::filesystem::path& file) {
 void write_vector(PetscViewer viewer, Vec& v, const std::vector<double>& data, const char* name,
                   const std::filesystem::path& file) {
   // The Vec borrows the caller's array (no copy); block size 3 makes the dataset N×3.
-  check_petsc(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, to_petsc_size(data.size(), file),
-                                    data.data(), &v),
-              file, "VecCreateSeqWithArray");
+  check_petsc(
+      VecCreateSeqWithArray(PETSC_COMM_SELF, 3, to_petsc_size(data.size(), file), data.data(), &v),
+      file, "VecCreateSeqWithArray");
   check_petsc(PetscObjectSetName(reinterpret_cast<PetscObject>(v), name), file,
               "PetscObjectSetName");
   check_petsc(VecView(v, viewer), file, "VecView");
@@ -79,8 +79,7 @@ void write_frame_h5(const std::filesystem::path& file, const SurfaceSample& s) {
     FrameObjects o;
     check_petsc(PetscViewerCreate(PETSC_COMM_SELF, &o.viewer), file, "PetscViewerCreate");
     check_petsc(PetscViewerSetType(o.viewer, PETSCVIEWERHDF5), file, "PetscViewerSetType");
-    check_petsc(PetscViewerFileSetMode(o.viewer, FILE_MODE_WRITE), file,
-                "PetscViewerFileSetMode");
+    check_petsc(PetscViewerFileSetMode(o.viewer, FILE_MODE_WRITE), file, "PetscViewerFileSetMode");
     check_petsc(PetscViewerFileSetName(o.viewer, tmp.c_str()), file, "PetscViewerFileSetName");
 
     write_vector(o.viewer, o.geometry, s.points, "geometry", file);
@@ -114,12 +113,23 @@ std::string xml_escape(const std::string& s) {
   out.reserve(s.size());
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -157,13 +167,19 @@ void XdmfSeries::add_frame(int step, double time, const SurfaceSample& surface) 
   // The HDF5 file is complete (renamed into place) before the XDMF that lists it is rewritten.
   write_frame_h5(dir_ / h5, surface);
 
-  Frame f{step, time, h5, static_cast<std::int64_t>(surface.points.size() / 3),
-          static_cast<std::int64_t>(surface.quads.size() / 4), !surface.displacement.empty()};
+  Frame f{step,
+          time,
+          h5,
+          static_cast<std::int64_t>(surface.points.size() / 3),
+          static_cast<std::int64_t>(surface.quads.size() / 4),
+          !surface.displacement.empty()};
   // A restarted run may repeat a step: its new file replaced the old one, so replace the entry.
-  auto same = std::find_if(frames_.begin(), frames_.end(),
-                           [&](const Frame& g) { return g.step == step; });
-  if (same != frames_.end()) *same = f;
-  else frames_.push_back(f);
+  auto same =
+      std::find_if(frames_.begin(), frames_.end(), [&](const Frame& g) { return g.step == step; });
+  if (same != frames_.end())
+    *same = f;
+  else
+    frames_.push_back(f);
 
   std::string x;
   x += "<?xml version=\"1.0\" ?>\n";

@@ -24,7 +24,8 @@ PetscLogEvent effect_log_event(const std::string& name) {
 
 }  // namespace
 
-EnergyTerm::EnergyTerm(std::string name) : name_(std::move(name)), event_(effect_log_event(name_)) {}
+EnergyTerm::EnergyTerm(std::string name)
+    : name_(std::move(name)), event_(effect_log_event(name_)) {}
 
 std::vector<PetscInt> to_local_nodes(const ParallelLayout& layout, const int* nodes, int n) {
   std::vector<PetscInt> local(n);

@@ -8,7 +8,7 @@ IsotropicSvkMaterial::IsotropicSvkMaterial(double E, double nu) {
   // ψ = c [ (1−ν)(e11² + e22² + 2 e12²) + ν (e11 + e22)² ],  c = E / (2(1−ν²)).
   const double c = E / (2.0 * (1.0 - nu * nu));
   C_ << 2.0 * c, 2.0 * c * nu, 0.0,  //
-      2.0 * c * nu, 2.0 * c, 0.0,     //
+      2.0 * c * nu, 2.0 * c, 0.0,    //
       0.0, 0.0, 4.0 * c * (1.0 - nu);
 }
 

@@ -16,8 +16,8 @@ ShellElasticTerm::ShellElasticTerm(const Discretization& disc, const ParallelLay
   const int ng = disc.num_quadrature_points();
   for (int f : layout.local_elements()) {
     const ElementBasis b = disc.element_basis(f);
-    elements_.push_back({to_local_nodes(layout, b.nodes, b.size), b,
-                         static_cast<int>(references_.size())});
+    elements_.push_back(
+        {to_local_nodes(layout, b.nodes, b.size), b, static_cast<int>(references_.size())});
     for (int g = 0; g < ng; ++g) {
       Eigen::Vector3d a[5];
       for (int p = 0; p < 5; ++p) {
@@ -68,7 +68,8 @@ PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSu
           A *= qw;
           for (int j = i; j < n; ++j) {  // upper blocks; the lower ones by symmetry below
             Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
-            for (int q = 0; q < 5; ++q) block += e.basis.slot(g, kDu + q)[j] * A.middleCols<3>(3 * q);
+            for (int q = 0; q < 5; ++q)
+              block += e.basis.slot(g, kDu + q)[j] * A.middleCols<3>(3 * q);
             for (int c = 0; c < 3; ++c)
               for (int d = 0; d < 3; ++d) He[(3 * i + c) * 3 * n + 3 * j + d] += block(c, d);
           }

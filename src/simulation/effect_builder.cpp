@@ -2,9 +2,8 @@
 // elements, boundary edges and points.
 #include "mlshell/effect_builder.hpp"
 
-#include <cmath>
-
 #include <Eigen/Dense>
+#include <cmath>
 
 #include "mlshell/effects.hpp"
 
@@ -57,7 +56,8 @@ std::vector<EdgeSample> edge_samples(const Discretization& disc, const ParallelL
       Eigen::Matrix2d metric;
       metric << s.point.xu.dot(s.point.xu), s.point.xu.dot(s.point.xv), s.point.xu.dot(s.point.xv),
           s.point.xv.dot(s.point.xv);
-      const Eigen::Vector2d c = metric.inverse() * Eigen::Vector2d(nu.dot(s.point.xu), nu.dot(s.point.xv));
+      const Eigen::Vector2d c =
+          metric.inverse() * Eigen::Vector2d(nu.dot(s.point.xu), nu.dot(s.point.xv));
       for (int i = 0; i < s.point.basis.size(); ++i)
         s.conormal.push_back(c[0] * s.point.basis.w[kDu][i] + c[1] * s.point.basis.w[kDv][i]);
       out.push_back(std::move(s));
@@ -103,7 +103,8 @@ std::unique_ptr<EnergyTerm> penalty_term(const std::string& name, const Discreti
                                          const std::optional<Motion>& motion) {
   std::vector<PenaltySample> samples;
   if (const auto* curve = std::get_if<CurveSelection>(&where.selection)) {
-    for (EdgeSample& s : edge_samples(disc, layout, select_curve(disc, *curve, frame, where.text))) {
+    for (EdgeSample& s :
+         edge_samples(disc, layout, select_curve(disc, *curve, frame, where.text))) {
       PenaltySample p{s.point.nodes, s.point.basis.w[kValue], {}, beta * s.weight, 0.0};
       if (clamp) p.conormal = s.conormal, p.rotation_weight = beta_rot * s.weight;
       samples.push_back(std::move(p));
@@ -129,44 +130,56 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Disc
   const double ramp_time = scene.time.dt * scene.time.steps;
   const double h = disc.mesh_size();
   const int nlocal = layout.num_local_points();
-  for (const Effect& effect : scene.effects) {
+  for (size_t index = 0; index < scene.effects.size(); ++index) {
+    const Effect& effect = scene.effects[index];
     const std::string name = effect_name(effect);
-    if (std::holds_alternative<InertiaEffect>(effect)) {
-      problem->add_term(std::make_unique<InertiaTerm>(disc, layout, scene.material.density, scene.time.dt));
-    } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
-      const double rho = scene.material.density;
-      const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
-      problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
-    } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
-      problem->add_term(std::make_unique<LinearLoadTerm>(
-          name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
-    } else if (const auto* l = std::get_if<LineLoadEffect>(&effect)) {
-      std::vector<double> force(3 * nlocal, 0.0);
-      const auto edges =
-          select_curve(disc, std::get<CurveSelection>(l->where.selection), frame, l->where.text);
-      for (const EdgeSample& s : edge_samples(disc, layout, edges))
-        for (int i = 0; i < s.point.basis.size(); ++i)
-          for (int c = 0; c < 3; ++c)
-            force[3 * s.point.nodes[i] + c] += s.weight * s.point.basis.w[kValue][i] * l->force_per_length[c];
-      problem->add_term(std::make_unique<LinearLoadTerm>(name, std::move(force), l->ramp ? ramp_time : 0.0));
-    } else if (const auto* p = std::get_if<PointLoadEffect>(&effect)) {
-      std::vector<double> force(3 * nlocal, 0.0);
-      const SurfacePoint sp = resolve_point(disc, p->where, frame);
-      if (layout.face_owner(sp.face) == layout.rank()) {
-        const LocalPoint lp = local_point(disc, layout, sp);
-        for (int i = 0; i < lp.basis.size(); ++i)
-          for (int c = 0; c < 3; ++c) force[3 * lp.nodes[i] + c] += lp.basis.w[kValue][i] * p->force[c];
+    try {
+      if (std::holds_alternative<InertiaEffect>(effect)) {
+        problem->add_term(
+            std::make_unique<InertiaTerm>(disc, layout, scene.material.density, scene.time.dt));
+      } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
+        const double rho = scene.material.density;
+        const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
+        problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
+      } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
+        problem->add_term(std::make_unique<LinearLoadTerm>(
+            name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
+      } else if (const auto* l = std::get_if<LineLoadEffect>(&effect)) {
+        std::vector<double> force(3 * nlocal, 0.0);
+        const auto edges =
+            select_curve(disc, std::get<CurveSelection>(l->where.selection), frame, l->where.text);
+        for (const EdgeSample& s : edge_samples(disc, layout, edges))
+          for (int i = 0; i < s.point.basis.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+              force[3 * s.point.nodes[i] + c] +=
+                  s.weight * s.point.basis.w[kValue][i] * l->force_per_length[c];
+        problem->add_term(
+            std::make_unique<LinearLoadTerm>(name, std::move(force), l->ramp ? ramp_time : 0.0));
+      } else if (const auto* p = std::get_if<PointLoadEffect>(&effect)) {
+        std::vector<double> force(3 * nlocal, 0.0);
+        const SurfacePoint sp = resolve_point(disc, p->where, frame);
+        if (layout.face_owner(sp.face) == layout.rank()) {
+          const LocalPoint lp = local_point(disc, layout, sp);
+          for (int i = 0; i < lp.basis.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+              force[3 * lp.nodes[i] + c] += lp.basis.w[kValue][i] * p->force[c];
+        }
+        problem->add_term(
+            std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
+      } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
+        const double beta = penalty_parameter(d->penalty, d->sigma, h);
+        problem->add_term(penalty_term(name, disc, layout, d->where, frame, beta, 0.0, false,
+                                       d->components, d->motion));
+      } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
+        const double beta = penalty_parameter(c->penalty, c->sigma, h);
+        const double beta_rot = c->rotation_penalty ? *c->rotation_penalty : beta * h * h;
+        problem->add_term(penalty_term(name, disc, layout, c->where, frame, beta, beta_rot, true,
+                                       {true, true, true}, c->motion));
       }
-      problem->add_term(std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
-    } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
-      const double beta = penalty_parameter(d->penalty, d->sigma, h);
-      problem->add_term(penalty_term(name, disc, layout, d->where, frame, beta, 0.0, false,
-                                     d->components, d->motion));
-    } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
-      const double beta = penalty_parameter(c->penalty, c->sigma, h);
-      const double beta_rot = c->rotation_penalty ? *c->rotation_penalty : beta * h * h;
-      problem->add_term(penalty_term(name, disc, layout, c->where, frame, beta, beta_rot, true,
-                                     {true, true, true}, c->motion));
+    } catch (const SceneError& e) {
+      // Selections are resolved here, on the mesh: say which scene entry they came from.
+      throw SceneError(scene.file.string() + ": effects[" + std::to_string(index) + "]." + name +
+                       ".where: " + e.what());
     }
   }
   return problem;

@@ -18,12 +18,15 @@ SimulationOptions SimulationOptions::from_petsc_options() {
   SimulationOptions o;
   PetscBool flag = PETSC_FALSE;
   PetscInt gauss = o.gauss_points;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetBool(nullptr, nullptr, "-mlshell_evaluate", &flag, nullptr));
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_evaluate", &flag, nullptr));
   o.evaluate_only = flag;
   flag = PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetBool(nullptr, nullptr, "-mlshell_quiet", &flag, nullptr));
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_quiet", &flag, nullptr));
   o.quiet = flag;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetInt(nullptr, nullptr, "-mlshell_gauss_points", &gauss, nullptr));
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetInt(nullptr, nullptr, "-mlshell_gauss_points", &gauss, nullptr));
   if (gauss < 2 || gauss > 6)
     throw SceneError("-mlshell_gauss_points: must be in 2..6; got '" + std::to_string(gauss) + "'");
   o.gauss_points = static_cast<int>(gauss);
@@ -33,7 +36,8 @@ SimulationOptions SimulationOptions::from_petsc_options() {
 QuadMesh build_cage(const GeometrySpec& geometry) {
   QuadMesh cage;
   if (const auto* r = std::get_if<RectangleCage>(&geometry.cage)) {
-    cage = make_rectangle_cage(r->size[0], r->size[1], r->faces[0], r->faces[1], r->origin[0], r->origin[1]);
+    cage = make_rectangle_cage(r->size[0], r->size[1], r->faces[0], r->faces[1], r->origin[0],
+                               r->origin[1]);
   } else if (const auto* l = std::get_if<LShapeCage>(&geometry.cage)) {
     cage = make_l_shape_cage(l->size[0], l->size[1], l->faces[0], l->faces[1], l->cut[0], l->cut[1],
                              l->origin[0], l->origin[1]);
@@ -72,12 +76,23 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   MPI_Comm_size(comm, &size_);
   wall_start_ = MPI_Wtime();
   frame_ = CageFrame::from(scene_.geometry);
-  hierarchy_ = std::make_unique<SubdivisionHierarchy>(build_cage(scene_.geometry), scene_.geometry.refine);
+  try {
+    hierarchy_ =
+        std::make_unique<SubdivisionHierarchy>(build_cage(scene_.geometry), scene_.geometry.refine);
+  } catch (const MeshError& e) {
+    throw SceneError(scene_.file.string() + ": geometry.cage: " + e.what());
+  }
   disc_ = std::make_unique<Discretization>(hierarchy_->finest(), options_.gauss_points);
   layout_ = std::make_unique<ParallelLayout>(comm, *disc_);
   problem_ = build_level_problem(scene_, *disc_, *layout_, frame_);
-  for (const Probe& p : scene_.probes)
-    probes_.push_back(select_point(*disc_, std::get<PointSelection>(p.where.selection), frame_, p.where.text));
+  for (const Probe& p : scene_.probes) {
+    try {
+      probes_.push_back(
+          select_point(*disc_, std::get<PointSelection>(p.where.selection), frame_, p.where.text));
+    } catch (const SceneError& e) {
+      throw SceneError(scene_.file.string() + ": probes." + p.name + ": " + e.what());
+    }
+  }
   PetscCallAbort(comm, layout_->create_vector(&u_));
   PetscCallAbort(comm, VecDuplicate(u_, &v_));
   PetscCallAbort(comm, VecDuplicate(u_, &u_prev_));
@@ -121,16 +136,26 @@ PetscErrorCode Simulation::set_initial_state() {
   const InitialState& init = scene_.initial_state;
   std::vector<double> u, v;
   if (init.checkpoint) {
+    // Rank 0 reads; every rank must learn whether that worked, so all of them raise the error.
     Checkpoint c;
-    if (rank_ == 0) c = read_checkpoint(*init.checkpoint);
-    std::uint64_t expect = discretization_fingerprint(*disc_);
-    int ok = rank_ != 0 || (c.scene_fingerprint == expect &&
-                            c.displacement.size() == static_cast<size_t>(disc_->num_dofs()));
-    PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm_));
-    if (!ok)
-      throw SceneError(scene_.file.string() + ": initial_state.checkpoint: '" +
-                       init.checkpoint->string() +
-                       "' was written for a different discretization (cage, refine or ghost ring)");
+    std::string error;
+    if (rank_ == 0) {
+      try {
+        c = read_checkpoint(*init.checkpoint);
+        if (c.scene_fingerprint != discretization_fingerprint(*disc_) ||
+            c.displacement.size() != static_cast<size_t>(disc_->num_dofs()))
+          error = "'" + init.checkpoint->string() +
+                  "' was written for a different discretization (cage, refine or ghost ring)";
+      } catch (const OutputError& e) {
+        error = e.what();
+      }
+    }
+    int length = static_cast<int>(error.size());
+    PetscCallMPI(MPI_Bcast(&length, 1, MPI_INT, 0, comm_));
+    error.resize(length);
+    PetscCallMPI(MPI_Bcast(error.data(), length, MPI_CHAR, 0, comm_));
+    if (!error.empty())
+      throw SceneError(scene_.file.string() + ": initial_state.checkpoint: " + error);
     PetscCallMPI(MPI_Bcast(&c.step, 1, MPI_INT, 0, comm_));
     first_step_ = c.step;
     u = c.displacement;
@@ -143,7 +168,8 @@ PetscErrorCode Simulation::set_initial_state() {
       for (int i = 0; i < disc_->num_points(); ++i) {
         const Point3& X = disc_->mesh().points[i];
         for (int r = 0; r < 3; ++r)
-          u[3 * i + r] = A[r][0] * X[0] + A[r][1] * X[1] + A[r][2] * X[2] + init.translate[r] - X[r];
+          u[3 * i + r] =
+              A[r][0] * X[0] + A[r][1] * X[1] + A[r][2] * X[2] + init.translate[r] - X[r];
       }
     }
   }
@@ -152,7 +178,7 @@ PetscErrorCode Simulation::set_initial_state() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::write_frame(int n, double t, bool force) {
+PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converged) {
   PetscFunctionBeginUser;
   const bool frame_due = force || n % scene_.output.every == 0;
   std::vector<double> u;
@@ -171,7 +197,9 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force) {
     }
     s.quads = output_->quads;
     const auto& formats = scene_.output.formats;
-    auto has = [&](const char* f) { return std::find(formats.begin(), formats.end(), f) != formats.end(); };
+    auto has = [&](const char* f) {
+      return std::find(formats.begin(), formats.end(), f) != formats.end();
+    };
     if (has("xdmf")) {
       if (!output_->xdmf) output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name);
       output_->xdmf->add_frame(n, t, s);
@@ -184,7 +212,9 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force) {
       write_obj(output_->dir / name, s, c.str());
     }
   }
-  if (scene_.output.checkpoint_every > 0 && n > 0 && n % scene_.output.checkpoint_every == 0) {
+  // Only converged states are worth restarting from.
+  if (converged && scene_.output.checkpoint_every > 0 && n > 0 &&
+      n % scene_.output.checkpoint_every == 0) {
     std::vector<double> v;
     PetscCall(layout_->gather_natural(v_, v));
     if (rank_ == 0) {
@@ -217,8 +247,10 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
     for (size_t i = 0; i < energies.size(); ++i) {
       auto it = std::find_if(sums.begin(), sums.end(),
                              [&](const auto& p) { return p.first == output_->effect_names[i]; });
-      if (it == sums.end()) sums.emplace_back(output_->effect_names[i], energies[i]);
-      else it->second += energies[i];
+      if (it == sums.end())
+        sums.emplace_back(output_->effect_names[i], energies[i]);
+      else
+        it->second += energies[i];
     }
     for (const auto& [k, val] : sums) energy.emplace_back(k, Json(val));
     energy.emplace_back("total", Json(total));
@@ -275,7 +307,8 @@ PetscErrorCode Simulation::evaluate(int* status) {
   PetscCall(PetscPrintf(comm_, "mlshell: %s: %d dofs on %d rank(s), initial state\n",
                         scene_.name.c_str(), disc_->num_dofs(), size_));
   for (size_t i = 0; i < energies.size(); ++i)
-    PetscCall(PetscPrintf(comm_, "  energy %-14s % .10e\n", output_->effect_names[i].c_str(), energies[i]));
+    PetscCall(PetscPrintf(comm_, "  energy %-14s % .10e\n", output_->effect_names[i].c_str(),
+                          energies[i]));
   PetscCall(PetscPrintf(comm_, "  energy %-14s % .10e\n  gradient norm         %.10e\n", "total",
                         static_cast<double>(f), static_cast<double>(gnorm)));
   PetscCall(write_summary("evaluated", nullptr));
@@ -314,12 +347,13 @@ PetscErrorCode Simulation::run(int* status) {
     PetscFunctionReturn(0);
   }
   solver_ = std::make_unique<StepSolver>(*problem_);
-  PetscCall(PetscPrintf(comm_,
-                        "mlshell: %s: %d dofs (%d elements, h = %.4g m) on %d rank(s), %d step(s) of "
-                        "dt = %g s, solver %s\n",
-                        scene_.name.c_str(), disc_->num_dofs(), static_cast<int>(disc_->elements().size()),
-                        disc_->mesh_size(), size_, scene_.time.steps - first_step_, scene_.time.dt,
-                        solver_->type().c_str()));
+  PetscCall(
+      PetscPrintf(comm_,
+                  "mlshell: %s: %d dofs (%d elements, h = %.4g m) on %d rank(s), %d step(s) of "
+                  "dt = %g s, solver %s\n",
+                  scene_.name.c_str(), disc_->num_dofs(),
+                  static_cast<int>(disc_->elements().size()), disc_->mesh_size(), size_,
+                  scene_.time.steps - first_step_, scene_.time.dt, solver_->type().c_str()));
   const bool csv = std::find(scene_.output.formats.begin(), scene_.output.formats.end(), "csv") !=
                    scene_.output.formats.end();
   if (rank_ == 0 && csv) {
@@ -334,7 +368,7 @@ PetscErrorCode Simulation::run(int* status) {
         if (cols[j] == cols[i]) cols[j] += "_" + std::to_string(j);
     output_->csv = std::make_unique<CsvTable>(output_->dir / "steps.csv", cols);
   }
-  if (first_step_ == 0) PetscCall(write_frame(0, 0.0, true));
+  if (first_step_ == 0) PetscCall(write_frame(0, 0.0, true, true));
   SolveReport report;
   for (int n = first_step_ + 1; n <= scene_.time.steps; ++n) {
     const double t0 = MPI_Wtime();
@@ -347,11 +381,13 @@ PetscErrorCode Simulation::run(int* status) {
     double total = 0.0;
     for (double e : energies) total += e;
     if (!options_.quiet)
-      PetscCall(PetscPrintf(comm_, "step %4d/%d  t = %-8.4g  E = % .6e  its = %4d  |g| = %.3e  %s  %.2f s\n",
-                            n, scene_.time.steps, n * scene_.time.dt, total, report.iterations,
-                            report.gradient_norm, report.reason.c_str(), wall));
+      PetscCall(PetscPrintf(
+          comm_, "step %4d/%d  t = %-8.4g  E = % .6e  its = %4d  |g| = %.3e  %s  %.2f s\n", n,
+          scene_.time.steps, n * scene_.time.dt, total, report.iterations, report.gradient_norm,
+          report.reason.c_str(), wall));
     if (output_->csv) {
-      std::vector<std::variant<double, long long, std::string>> row{static_cast<long long>(n), n * scene_.time.dt};
+      std::vector<std::variant<double, long long, std::string>> row{static_cast<long long>(n),
+                                                                    n * scene_.time.dt};
       for (double e : energies) row.emplace_back(e);
       row.emplace_back(total);
       row.emplace_back(static_cast<long long>(report.iterations));
@@ -362,14 +398,16 @@ PetscErrorCode Simulation::run(int* status) {
       row.emplace_back(wall);
       output_->csv->append(row);
     }
-    PetscCall(write_frame(n, n * scene_.time.dt, n == scene_.time.steps || !report.converged));
+    PetscCall(write_frame(n, n * scene_.time.dt, n == scene_.time.steps || !report.converged,
+                          report.converged));
     if (!report.converged) {
       all_converged_ = false;
-      PetscCall(PetscPrintf(comm_,
-                            "mlshell: step %d did not converge (%s, |g| = %.3e after %d iterations); "
-                            "stopping. Try a smaller dt, more iterations (-tao_max_it) or another "
-                            "solver (-tao_type).\n",
-                            n, report.reason.c_str(), report.gradient_norm, report.iterations));
+      PetscCall(
+          PetscPrintf(comm_,
+                      "mlshell: step %d did not converge (%s, |g| = %.3e after %d iterations); "
+                      "stopping. Try a smaller dt, more iterations (-tao_max_it) or another "
+                      "solver (-tao_type).\n",
+                      n, report.reason.c_str(), report.gradient_norm, report.iterations));
       if (problem_->inadmissible_evaluations() > 0)
         PetscCall(PetscPrintf(comm_,
                               "mlshell: %ld trial point(s) lay outside the material's valid domain "
@@ -380,11 +418,14 @@ PetscErrorCode Simulation::run(int* status) {
     }
   }
   PetscCall(write_summary(all_converged_ ? "complete" : "solver_failed", &report));
-  PetscCall(PetscPrintf(comm_, "mlshell: results in %s (summary.json%s%s%s)\n",
-                        fs::absolute(output_->dir).c_str(), csv ? ", steps.csv" : "",
-                        output_->xdmf ? (", " + output_->xdmf->xdmf_path().filename().string()).c_str() : "",
-                        std::find(scene_.output.formats.begin(), scene_.output.formats.end(), "obj") !=
-                                scene_.output.formats.end() ? ", frame_*.obj" : ""));
+  PetscCall(PetscPrintf(
+      comm_, "mlshell: results in %s (summary.json%s%s%s)\n", fs::absolute(output_->dir).c_str(),
+      csv ? ", steps.csv" : "",
+      output_->xdmf ? (", " + output_->xdmf->xdmf_path().filename().string()).c_str() : "",
+      std::find(scene_.output.formats.begin(), scene_.output.formats.end(), "obj") !=
+              scene_.output.formats.end()
+          ? ", frame_*.obj"
+          : ""));
   *status = all_converged_ ? 0 : kExitSolverFailed;
   PetscFunctionReturn(0);
 }

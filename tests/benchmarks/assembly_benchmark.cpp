@@ -20,7 +20,9 @@ struct Fixture {
   std::vector<double> u;
   Mat H = nullptr;
   explicit Fixture(int refine)
-      : disc(SubdivisionHierarchy(add_ghost_ring(make_rectangle_cage(1, 1, 4, 4, 0, 0)), refine).finest(), 3),
+      : disc(SubdivisionHierarchy(add_ghost_ring(make_rectangle_cage(1, 1, 4, 4, 0, 0)), refine)
+                 .finest(),
+             3),
         layout(PETSC_COMM_SELF, disc) {
     material.model = denim_preset();
     material.thickness = 0.66e-3;
@@ -50,8 +52,9 @@ void run(benchmark::State& state, bool grad, bool hess) {
     }
     benchmark::DoNotOptimize(e.value());
   }
-  state.counters["elements/s"] = benchmark::Counter(
-      static_cast<double>(fx.disc.elements().size()) * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["elements/s"] =
+      benchmark::Counter(static_cast<double>(fx.disc.elements().size()) * state.iterations(),
+                         benchmark::Counter::kIsRate);
 }
 
 void BM_ElasticEnergy(benchmark::State& s) { run(s, false, false); }

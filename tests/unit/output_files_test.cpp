@@ -1,5 +1,7 @@
 // Tests of the result-file writers (include/mlshell/output_files.hpp): atomic writes, OBJ,
 // XDMF+HDF5 (read back through PETSc's HDF5 viewer), CSV, JSON and binary checkpoints.
+#include "mlshell/output_files.hpp"
+
 #include <gtest/gtest.h>
 #include <petscis.h>
 #include <petscvec.h>
@@ -16,8 +18,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include "mlshell/output_files.hpp"
 
 namespace fs = std::filesystem;
 using mlshell::OutputError;
@@ -300,8 +300,9 @@ TEST_F(OutputFiles, XdmfSeriesWritesFramesReadableBack) {
                                std::to_string(sizeof(PetscInt)) + "\" Format=\"HDF\">";
   EXPECT_NE(x.find(int_item + "shell_000000.h5:/topology<"), std::string::npos) << x;
   EXPECT_NE(x.find(int_item + "shell_000010.h5:/topology<"), std::string::npos) << x;
-  const std::string dbl_item = "Dimensions=\"6 3\" NumberType=\"Float\" Precision=\"8\" "
-                               "Format=\"HDF\">shell_000010.h5:/";
+  const std::string dbl_item =
+      "Dimensions=\"6 3\" NumberType=\"Float\" Precision=\"8\" "
+      "Format=\"HDF\">shell_000010.h5:/";
   EXPECT_NE(x.find(dbl_item + "geometry<"), std::string::npos) << x;
   EXPECT_NE(x.find(dbl_item + "displacement<"), std::string::npos) << x;
 

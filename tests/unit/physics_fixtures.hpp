@@ -8,6 +8,7 @@
 
 #include "mlshell/effect_builder.hpp"
 #include "mlshell/effects.hpp"
+#include "mlshell/simulation.hpp"
 #include "mlshell/subdivision_hierarchy.hpp"
 
 namespace mlshell {
@@ -61,10 +62,13 @@ struct TestProblem {
     }
     if (kind == "dirichlet" || kind == "all") {
       Motion m{{0.2, 0.0, 0.1}, {0.0, 2.0}};
-      scene.effects.push_back(DirichletEffect{where("boundary(left)"), {true, false, true}, m, 5.0, {}});
-      scene.effects.push_back(DirichletEffect{where("corner(top-right)"), {true, true, true}, {}, 5.0, 1e4});
+      scene.effects.push_back(
+          DirichletEffect{where("boundary(left)"), {true, false, true}, m, 5.0, {}});
+      scene.effects.push_back(
+          DirichletEffect{where("corner(top-right)"), {true, true, true}, {}, 5.0, 1e4});
     }
-    if (kind == "clamp" || kind == "all") scene.effects.push_back(ClampEffect{where("boundary(bottom)"), {}, 5.0, {}, {}});
+    if (kind == "clamp" || kind == "all")
+      scene.effects.push_back(ClampEffect{where("boundary(bottom)"), {}, 5.0, {}, {}});
     CageFrame frame = CageFrame::from(scene.geometry);
     if (kind == "extraordinary") {
       cage = add_ghost_ring(fan_cage(5));
@@ -101,5 +105,26 @@ struct TestProblem {
     layout->scatter_natural(nat, u);
   }
 };
+
+/// A scene run quietly (only summary.json is written, into `dir`): the simulation, its exit
+/// status, and the final displacement in natural order on rank 0.
+struct SolvedScene {
+  std::unique_ptr<Simulation> simulation;
+  int status = -1;
+  std::vector<double> displacement;
+};
+
+inline SolvedScene solve_scene(Scene scene, MPI_Comm comm, const std::string& dir) {
+  scene.output.dir = dir;
+  scene.output.formats = {};
+  scene.output.checkpoint_every = 0;
+  SimulationOptions options;
+  options.quiet = true;
+  SolvedScene out;
+  out.simulation = std::make_unique<Simulation>(comm, scene, options);
+  PetscCallAbort(comm, out.simulation->run(&out.status));
+  out.simulation->natural_displacement(out.displacement);
+  return out;
+}
 
 }  // namespace mlshell

@@ -7,7 +7,6 @@
 #include <random>
 
 #include "mlshell/effects.hpp"
-#include "mlshell/simulation.hpp"
 #include "physics_fixtures.hpp"
 
 using namespace mlshell;
@@ -50,7 +49,8 @@ TEST(Material, DensityGradientAndHessianMatchFiniteDifferences) {
         em[i] -= h;
         Eigen::Vector3d gp, gm;
         const double fd = (material->energy_density(ep, &gp, nullptr) -
-                           material->energy_density(em, &gm, nullptr)) / (2 * h);
+                           material->energy_density(em, &gm, nullptr)) /
+                          (2 * h);
         EXPECT_NEAR(g[i], fd, 1e-6 * (1 + std::abs(fd)));
         for (int k = 0; k < 3; ++k)
           EXPECT_NEAR(H(k, i), (gp[k] - gm[k]) / (2 * h), 1e-5 * (1 + H.norm()));
@@ -82,8 +82,8 @@ TEST(Material, DenimIsInfiniteOutsideItsFittedDomain) {
 
 TEST(ShellKinematics, PointEnergyDerivativesMatchFiniteDifferences) {
   // A curved, sheared reference point and a random deformation.
-  Eigen::Vector3d a[5] = {{1.0, 0.1, 0.05}, {0.2, 0.9, -0.1}, {0.0, 0.1, 0.4},
-                          {0.05, 0.0, -0.2}, {0.1, -0.05, 0.3}};
+  Eigen::Vector3d a[5] = {
+      {1.0, 0.1, 0.05}, {0.2, 0.9, -0.1}, {0.0, 0.1, 0.4}, {0.05, 0.0, -0.2}, {0.1, -0.05, 0.3}};
   const ShellReference ref = ShellReference::from(a, Eigen::Vector3d(1, 0, 0));
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> dist(-0.02, 0.02);
@@ -108,7 +108,8 @@ TEST(ShellKinematics, PointEnergyDerivativesMatchFiniteDifferences) {
       dm[i] -= h;
       Vector15 gp, gm;
       const double fd = (shell_point_energy(ref, section, dp, &gp, nullptr) -
-                         shell_point_energy(ref, section, dm, &gm, nullptr)) / (2 * h);
+                         shell_point_energy(ref, section, dm, &gm, nullptr)) /
+                        (2 * h);
       EXPECT_NEAR(g[i], fd, 1e-6 * (1 + g.norm())) << "component " << i;
       const Vector15 col = (gp - gm) / (2 * h);
       EXPECT_LT((H.col(i) - col).norm(), 1e-5 * (1 + H.norm())) << "column " << i;
@@ -193,7 +194,8 @@ TEST(ClosedForm, UniformStretchGivesEnergyOfEquation33TimesArea) {
   Vec u;
   tp.layout->create_vector(&u);
   std::vector<double> nat(tp.disc->num_dofs(), 0.0);
-  for (int i = 0; i < tp.disc->num_points(); ++i) nat[3 * i] = (lambda - 1.0) * tp.disc->mesh().points[i].x();
+  for (int i = 0; i < tp.disc->num_points(); ++i)
+    nat[3 * i] = (lambda - 1.0) * tp.disc->mesh().points[i].x();
   tp.layout->scatter_natural(nat, u);
   PetscReal f;
   tp.problem->objective(u, &f, nullptr);
@@ -207,21 +209,17 @@ namespace {
 double plate_deflection(int refine) {
   Scene scene = parse_scene(std::filesystem::path(MLSHELL_SOURCE_DIR) / "examples/plate.yaml");
   scene.geometry.refine = refine;
-  scene.output.dir = std::filesystem::temp_directory_path() / ("mlshell_plate_" + std::to_string(refine));
-  scene.output.formats = {};
-  SimulationOptions options;
-  options.quiet = true;
-  Simulation sim(PETSC_COMM_SELF, scene, options);
-  int status = -1;
-  PetscCallAbort(PETSC_COMM_SELF, sim.run(&status));
-  EXPECT_EQ(status, 0);
-  std::vector<double> u;
-  sim.natural_displacement(u);
-  const SurfacePoint c = nearest_surface_point(sim.discretization(), Point3(0.5, 0.5, 0.0));
-  const PointBasis b = sim.discretization().evaluator().evaluate({c})[0];
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("mlshell_plate_" + std::to_string(refine));
+  const SolvedScene solved = solve_scene(scene, PETSC_COMM_SELF, dir);
+  EXPECT_EQ(solved.status, 0);
+  const Discretization& disc = solved.simulation->discretization();
+  const std::vector<double>& u = solved.displacement;
+  const SurfacePoint c = nearest_surface_point(disc, Point3(0.5, 0.5, 0.0));
+  const PointBasis b = disc.evaluator().evaluate({c})[0];
   double w = 0.0;
   for (int i = 0; i < b.size(); ++i) w += b.w[kValue][i] * u[3 * b.nodes[i] + 2];
-  std::filesystem::remove_all(scene.output.dir);
+  std::filesystem::remove_all(dir);
   return -w;
 }
 

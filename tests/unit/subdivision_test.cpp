@@ -11,7 +11,9 @@ using namespace mlshell;
 
 namespace {
 
-QuadMesh square_cage(int n) { return add_ghost_ring(make_rectangle_cage(1.0, 1.0, n, n, 0.0, 0.0)); }
+QuadMesh square_cage(int n) {
+  return add_ghost_ring(make_rectangle_cage(1.0, 1.0, n, n, 0.0, 0.0));
+}
 
 }  // namespace
 
@@ -98,8 +100,10 @@ TEST(Subdivision, LimitStencilsAreSmoothAcrossRegularAndIrregularFaces) {
         const Point3 xf = b[0].apply(kValue, mesh.points), xg = b[1].apply(kValue, mesh.points);
         EXPECT_LT((xf - xg).norm(), 1e-12) << "valence " << valence << " face " << f;
         // Tangent planes agree (G1): normals parallel.
-        const Point3 nf = b[0].apply(kDu, mesh.points).cross(b[0].apply(kDv, mesh.points)).normalized();
-        const Point3 ng = b[1].apply(kDu, mesh.points).cross(b[1].apply(kDv, mesh.points)).normalized();
+        const Point3 nf =
+            b[0].apply(kDu, mesh.points).cross(b[0].apply(kDv, mesh.points)).normalized();
+        const Point3 ng =
+            b[1].apply(kDu, mesh.points).cross(b[1].apply(kDv, mesh.points)).normalized();
         EXPECT_GT(nf.dot(ng), 1.0 - 1e-10) << "valence " << valence;
         double sum = 0;
         for (double x : b[0].w[kValue]) sum += x;
