@@ -6,5 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/build
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# One BLAS thread per MPI rank: the ranks already occupy the cores.
+export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 mpiexec --oversubscribe -n 2 build/mlshell examples/trampoline.yaml "$@"
 echo "Open out/trampoline/trampoline.xdmf in ParaView; per-step statistics: out/trampoline/steps.csv; summary: out/trampoline/summary.json"

@@ -7,22 +7,7 @@
 # usage: bash bad_input.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
 
-if [[ $# -ne 3 ]]; then
-  echo "usage: $0 MLSHELL SOURCE_DIR WORK_DIR" >&2
-  exit 2
-fi
-MLSHELL=$(realpath "$1")
-SRC=$(realpath "$2")
-WORK=$3
-PY=/usr/bin/python3
-export OMPI_ALLOW_RUN_AS_ROOT=${OMPI_ALLOW_RUN_AS_ROOT:-1}
-export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=${OMPI_ALLOW_RUN_AS_ROOT_CONFIRM:-1}
-
-[[ -n $WORK && $WORK != / ]] || { echo "bad WORK_DIR: '$WORK'" >&2; exit 2; }
-rm -rf "$WORK"
-mkdir -p "$WORK"
-WORK=$(realpath "$WORK")
-cd "$WORK"
+source "$(dirname "$0")/lib/common.bash" "$@"
 
 failures=0
 fail() {

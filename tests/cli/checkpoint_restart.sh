@@ -5,36 +5,15 @@
 # written for another refinement level must be refused with a message naming the file.
 #
 # Both runs are solved to a tight absolute gradient tolerance (-tao_gatol 1e-11, no relative
-# test), so that the comparison does not depend on the solver's path: state kept inside the
-# TAO solver from step to step in run A (e.g. the BFGS history of an LMVM preconditioner) starts
-# afresh in run B, and at the default -tao_gatol 1e-7 the two runs then agree only to about
-# 1e-8, not to the 1e-10 asked for here. (With a stateless preconditioner such as
-# -tao_bnk_pc_type lu the restart is bitwise identical even at the default tolerance.)
+# test), so that the comparison does not depend on solver state carried between steps (with the
+# default stateless LU preconditioner the restart is bitwise identical anyway; a preconditioner
+# with history, such as -tao_bnk_pc_type lmvm, would otherwise agree only to about 1e-8).
 #
 # usage: bash checkpoint_restart.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
 
-if [[ $# -ne 3 ]]; then
-  echo "usage: $0 MLSHELL SOURCE_DIR WORK_DIR" >&2
-  exit 2
-fi
-MLSHELL=$(realpath "$1")
-WORK=$3
-PY=/usr/bin/python3
-export OMPI_ALLOW_RUN_AS_ROOT=${OMPI_ALLOW_RUN_AS_ROOT:-1}
-export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=${OMPI_ALLOW_RUN_AS_ROOT_CONFIRM:-1}
-TIGHT=(-tao_gttol 0 -tao_gatol 1e-11 -tao_max_it 2000 -mlshell_quiet)
-
-[[ -n $WORK && $WORK != / ]] || { echo "bad WORK_DIR: '$WORK'" >&2; exit 2; }
-rm -rf "$WORK"
-mkdir -p "$WORK/logs"
-WORK=$(realpath "$WORK")
-cd "$WORK"
-
-die() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
+source "$(dirname "$0")/lib/common.bash" "$@"
+mkdir -p logs
 
 # scene FILE OUTDIR REFINE [INITIAL_STATE_LINE]
 scene() {

@@ -5,26 +5,7 @@
 # usage: bash outputs.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
 
-if [[ $# -ne 3 ]]; then
-  echo "usage: $0 MLSHELL SOURCE_DIR WORK_DIR" >&2
-  exit 2
-fi
-MLSHELL=$(realpath "$1")
-WORK=$3
-PY=/usr/bin/python3
-export OMPI_ALLOW_RUN_AS_ROOT=${OMPI_ALLOW_RUN_AS_ROOT:-1}
-export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=${OMPI_ALLOW_RUN_AS_ROOT_CONFIRM:-1}
-
-[[ -n $WORK && $WORK != / ]] || { echo "bad WORK_DIR: '$WORK'" >&2; exit 2; }
-rm -rf "$WORK"
-mkdir -p "$WORK"
-WORK=$(realpath "$WORK")
-cd "$WORK"
-
-die() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
+source "$(dirname "$0")/lib/common.bash" "$@"
 
 cat >outputs.yaml <<'EOF'
 name: outputs
