@@ -40,10 +40,13 @@ class ShellElasticTerm final : public EnergyTerm {
 };
 
 /// Implicit Euler inertia ρ/(2 dt²) ∫ |u − û|² dA with the predictor û = u_n + dt v_n.
+/// Its Hessian, the mass matrix over dt², is assembled once and added by add_constant_hessian.
 class InertiaTerm final : public EnergyTerm {
  public:
   InertiaTerm(const Discretization& disc, const ParallelLayout& layout, double area_density,
               double dt);
+  ~InertiaTerm() override;
+  PetscErrorCode add_constant_hessian(Mat hess) const override;
   /// Sets û from local predictor values (3 per local point).
   void set_predictor(std::vector<double> local_predictor) {
     predictor_ = std::move(local_predictor);
@@ -57,9 +60,11 @@ class InertiaTerm final : public EnergyTerm {
     ElementBasis basis;
     std::vector<double> area;  // w_g J̄_g
   };
+  PetscErrorCode assemble_mass(Mat M) const;
   std::vector<Element> elements_;
   double coefficient_;  // ρ / dt²
   std::vector<double> predictor_;
+  Mat mass_ = nullptr;  // ρ/dt² M, assembled in the constructor
 };
 
 /// A constant force field, linear in u: −s(t) f·u with s(t) = min(1, t / t_ramp) if ramped.

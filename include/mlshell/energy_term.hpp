@@ -45,6 +45,10 @@ class EnergyTerm {
   /// Adds this rank's part of the energy, gradient (if `grad`) and Hessian (if `hess`).
   virtual PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                              std::vector<double>* grad, Mat hess) const = 0;
+  /// Terms whose Hessian does not depend on u may keep it assembled and add it here, after the
+  /// element Hessians are assembled (H has the element-stencil pattern): cheaper than inserting
+  /// the same element matrices again at every Newton step.
+  virtual PetscErrorCode add_constant_hessian(Mat hess) const { return 0; }
 
  protected:
   double time_ = 0.0;

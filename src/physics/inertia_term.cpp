@@ -17,16 +17,46 @@ InertiaTerm::InertiaTerm(const Discretization& disc, const ParallelLayout& layou
       e.area.push_back(disc.quadrature_weight(g) * reference_area(b, g, disc.mesh().points));
     elements_.push_back(std::move(e));
   }
+  PetscCallAbort(layout.comm(), layout.create_matrix(&mass_));
+  PetscCallAbort(layout.comm(), assemble_mass(mass_));
+}
+
+InertiaTerm::~InertiaTerm() { MatDestroy(&mass_); }
+
+PetscErrorCode InertiaTerm::assemble_mass(Mat M) const {
+  PetscFunctionBeginUser;
+  std::vector<double> He;
+  for (const Element& e : elements_) {
+    const int n = e.basis.size;
+    He.assign(9 * n * n, 0.0);
+    for (size_t g = 0; g < e.area.size(); ++g) {
+      const double* N = e.basis.slot(static_cast<int>(g), kValue);
+      const double m = coefficient_ * e.area[g];
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          for (int c = 0; c < 3; ++c) He[(3 * i + c) * 3 * n + 3 * j + c] += m * N[i] * N[j];
+    }
+    PetscCall(add_local_hessian(M, e.nodes, He.data()));
+  }
+  PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode InertiaTerm::add_constant_hessian(Mat hess) const {
+  PetscFunctionBeginUser;
+  // Same element-stencil pattern as every level Hessian (ParallelLayout::create_matrix).
+  PetscCall(MatAXPY(hess, 1.0, mass_, SAME_NONZERO_PATTERN));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode InertiaTerm::add(const std::vector<double>& u, CompensatedSum& energy,
-                                std::vector<double>* grad, Mat hess) const {
+                                std::vector<double>* grad, Mat) const {
   PetscFunctionBeginUser;
-  std::vector<double> ge, He;
+  std::vector<double> ge;
   for (const Element& e : elements_) {
     const int n = e.basis.size;
     if (grad) ge.assign(3 * n, 0.0);
-    if (hess) He.assign(9 * n * n, 0.0);
     for (size_t g = 0; g < e.area.size(); ++g) {
       const double* N = e.basis.slot(static_cast<int>(g), kValue);
       double r[3] = {0, 0, 0};
@@ -38,13 +68,8 @@ PetscErrorCode InertiaTerm::add(const std::vector<double>& u, CompensatedSum& en
       if (grad)
         for (int i = 0; i < n; ++i)
           for (int c = 0; c < 3; ++c) ge[3 * i + c] += m * N[i] * r[c];
-      if (hess)
-        for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j)
-            for (int c = 0; c < 3; ++c) He[(3 * i + c) * 3 * n + 3 * j + c] += m * N[i] * N[j];
     }
     if (grad) add_local_gradient(e.nodes, ge.data(), *grad);
-    if (hess) PetscCall(add_local_hessian(hess, e.nodes, He.data()));
   }
   PetscFunctionReturn(0);
 }
