@@ -9,6 +9,7 @@
 
 #include "mlshell/effects.hpp"
 #include "mlshell/output_files.hpp"
+#include "simulation_output.hpp"
 
 namespace mlshell {
 
@@ -58,17 +59,6 @@ std::uint64_t discretization_fingerprint(const Discretization& disc) {
   for (const Point3& p : disc.mesh().points) mix(p.data(), 3 * sizeof(double));
   return h;
 }
-
-/// Rank 0's result files.
-struct Simulation::Output {
-  fs::path dir;
-  std::unique_ptr<XdmfSeries> xdmf;
-  std::unique_ptr<CsvTable> csv;
-  bool obj = false;
-  std::vector<PointBasis> samples;  // limit-surface sample points, face by face
-  std::vector<std::int64_t> quads;
-  std::vector<std::string> effect_names;
-};
 
 Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
     : comm_(comm), scene_(std::move(scene)), options_(options) {
@@ -175,116 +165,6 @@ PetscErrorCode Simulation::set_initial_state() {
   }
   PetscCall(layout_->scatter_natural(u, u_));
   PetscCall(layout_->scatter_natural(v, v_));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converged) {
-  PetscFunctionBeginUser;
-  const bool frame_due = force || n % scene_.output.every == 0;
-  std::vector<double> u;
-  PetscCall(layout_->gather_natural(u_, u));
-  if (rank_ == 0 && frame_due) {
-    SurfaceSample s;
-    const auto& X = disc_->mesh().points;
-    for (const PointBasis& b : output_->samples) {
-      Point3 x = b.apply(kValue, X), d = Point3::Zero();
-      for (int i = 0; i < b.size(); ++i)
-        for (int c = 0; c < 3; ++c) d[c] += b.w[kValue][i] * u[3 * b.nodes[i] + c];
-      for (int c = 0; c < 3; ++c) {
-        s.points.push_back(x[c] + d[c]);
-        s.displacement.push_back(d[c]);
-      }
-    }
-    s.quads = output_->quads;
-    const auto& formats = scene_.output.formats;
-    auto has = [&](const char* f) {
-      return std::find(formats.begin(), formats.end(), f) != formats.end();
-    };
-    if (has("xdmf")) {
-      if (!output_->xdmf) output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name);
-      output_->xdmf->add_frame(n, t, s);
-    }
-    if (has("obj")) {
-      char name[64];
-      std::snprintf(name, sizeof name, "frame_%06d.obj", n);
-      std::ostringstream c;
-      c << "mlshell " << scene_.name << " step " << n << " time " << t;
-      write_obj(output_->dir / name, s, c.str());
-    }
-  }
-  // Only converged states are worth restarting from.
-  if (converged && scene_.output.checkpoint_every > 0 && n > 0 &&
-      n % scene_.output.checkpoint_every == 0) {
-    std::vector<double> v;
-    PetscCall(layout_->gather_natural(v_, v));
-    if (rank_ == 0) {
-      char name[64];
-      std::snprintf(name, sizeof name, "checkpoint_%06d.bin", n);
-      write_checkpoint(output_->dir / name,
-                       {n, t, discretization_fingerprint(*disc_), std::move(u), std::move(v)});
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode Simulation::write_summary(const std::string& status, const SolveReport* last) {
-  PetscFunctionBeginUser;
-  std::vector<double> energies, u;
-  PetscCall(problem_->term_energies(u_, energies));
-  Vec g;
-  PetscReal f, gnorm;
-  PetscCall(VecDuplicate(u_, &g));
-  PetscCall(problem_->objective(u_, &f, g));
-  PetscCall(VecNorm(g, NORM_2, &gnorm));
-  PetscCall(VecDestroy(&g));
-  PetscCall(layout_->gather_natural(u_, u));
-  if (rank_ == 0) {
-    Json::Object energy;
-    double total = 0.0;
-    for (double e : energies) total += e;
-    // One number per effect (several effects of one kind are summed).
-    std::vector<std::pair<std::string, double>> sums;
-    for (size_t i = 0; i < energies.size(); ++i) {
-      auto it = std::find_if(sums.begin(), sums.end(),
-                             [&](const auto& p) { return p.first == output_->effect_names[i]; });
-      if (it == sums.end())
-        sums.emplace_back(output_->effect_names[i], energies[i]);
-      else
-        it->second += energies[i];
-    }
-    for (const auto& [k, val] : sums) energy.emplace_back(k, Json(val));
-    energy.emplace_back("total", Json(total));
-    Json::Object probes;
-    const auto bases = disc_->evaluator().evaluate(probes_);
-    for (size_t p = 0; p < probes_.size(); ++p) {
-      const Point3 X = bases[p].apply(kValue, disc_->mesh().points);
-      std::vector<double> d(3, 0.0);
-      for (int i = 0; i < bases[p].size(); ++i)
-        for (int c = 0; c < 3; ++c) d[c] += bases[p].w[kValue][i] * u[3 * bases[p].nodes[i] + c];
-      probes.emplace_back(scene_.probes[p].name,
-                          Json(Json::Object{{"reference", Json::array({X[0], X[1], X[2]})},
-                                            {"displacement", Json::array(d)}}));
-    }
-    Json::Object solver{{"type", Json(solver_ ? solver_->type() : std::string("none"))},
-                        {"iterations", Json(static_cast<long long>(total_iterations_))},
-                        {"converged", Json(all_converged_)},
-                        {"reason", Json(last ? last->reason : std::string("not run"))},
-                        {"objective_evaluations", Json(problem_->objective_evaluations())},
-                        {"hessian_evaluations", Json(problem_->hessian_evaluations())},
-                        {"inadmissible_trial_points", Json(problem_->inadmissible_evaluations())}};
-    Json summary(Json::Object{{"scene", Json(scene_.name)},
-                              {"status", Json(status)},
-                              {"dofs", Json(disc_->num_dofs())},
-                              {"ranks", Json(size_)},
-                              {"steps", Json(steps_done_)},
-                              {"time", Json((steps_done_ + first_step_) * scene_.time.dt)},
-                              {"energy", Json(energy)},
-                              {"gradient_norm", Json(static_cast<double>(gnorm))},
-                              {"probes", Json(probes)},
-                              {"solver", Json(solver)},
-                              {"wall_time", Json(MPI_Wtime() - wall_start_)}});
-    write_file_atomic(output_->dir / "summary.json", summary.dump() + "\n");
-  }
   PetscFunctionReturn(0);
 }
 
