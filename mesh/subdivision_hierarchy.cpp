@@ -3,6 +3,8 @@
 // points of level l (the outer ghost ring never feeds the inner one), which is checked here.
 #include "mlshell/subdivision_hierarchy.hpp"
 
+#include "reverse_subdivision.hpp"
+
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
@@ -133,6 +135,7 @@ SubdivisionHierarchy::SubdivisionHierarchy(const QuadMesh& cage, int refinements
     S.setFromTriplets(triplets.begin(), triplets.end());
     S.prune(0.0);
     subdivision_.push_back(std::move(S));
+    reverse_.push_back(build_reverse_subdivision(*refiner, current, remap, next.num_points()));
     levels_.push_back(next);
     current = std::move(next);
   }

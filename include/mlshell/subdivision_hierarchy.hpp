@@ -25,10 +25,13 @@ class SubdivisionHierarchy {
   const QuadMesh& finest() const { return levels_.back(); }
   /// S_l^{l+1} between the kept control points of levels l and l+1.
   const SubdivisionMatrix& subdivision(int l) const { return subdivision_[l]; }
+  /// Q_{l+1}^l, the reverse subdivision projection from level l+1 onto level l (paper eq. 5.19
+  /// with 5.21, Appendices B and C): sparse, local, and Q S = I.
+  const SubdivisionMatrix& reverse_subdivision(int l) const { return reverse_[l]; }
 
  private:
   std::vector<QuadMesh> levels_;
-  std::vector<SubdivisionMatrix> subdivision_;
+  std::vector<SubdivisionMatrix> subdivision_, reverse_;
 };
 
 }  // namespace mlshell

@@ -13,9 +13,10 @@
 
 namespace mlshell {
 
-/// A 4×4-face cage around an interior extraordinary vertex of the given valence (a fan of
-/// quads), slightly curved.
-inline QuadMesh fan_cage(int valence) {
+/// A cage around an interior extraordinary vertex of the given valence (a fan of quads),
+/// slightly curved: two rings of faces, or one (`near_boundary`: the extraordinary vertex is then
+/// one edge away from the boundary).
+inline QuadMesh fan_cage(int valence, bool near_boundary = false) {
   QuadMesh m;
   m.points.emplace_back(0, 0, 0);
   const double pi = std::acos(-1.0);
@@ -29,9 +30,11 @@ inline QuadMesh fan_cage(int valence) {
   auto mid = [&](int r, int k) { return 2 + r * 2 * valence + 2 * (k % valence); };
   for (int k = 0; k < valence; ++k) {
     m.quads.push_back({0, spoke(0, k), mid(0, k), spoke(0, k + 1)});
+    if (near_boundary) continue;
     m.quads.push_back({spoke(0, k), spoke(1, k), mid(1, k), mid(0, k)});
     m.quads.push_back({mid(0, k), mid(1, k), spoke(1, k + 1), spoke(0, k + 1)});
   }
+  if (near_boundary) m.points.resize(1 + 2 * valence);  // drop the unused outer ring
   m.ghost.assign(m.quads.size(), 0);
   return m;
 }
