@@ -1,9 +1,9 @@
 // Reverse subdivision Q_{l+1}^l (private to mesh/; see SubdivisionHierarchy::reverse_subdivision).
 #pragma once
 
-#include <vector>
-
 #include <opensubdiv/far/topologyRefiner.h>
+
+#include <vector>
 
 #include "mlshell/subdivision_hierarchy.hpp"
 

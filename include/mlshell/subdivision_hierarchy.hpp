@@ -2,7 +2,9 @@
 // (paper §5.1, §5.2.1, Fig. 5), and the subdivision matrices between neighbouring levels.
 #pragma once
 
+#include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include "mlshell/quad_mesh.hpp"
@@ -12,6 +14,22 @@ namespace mlshell {
 /// Scalar subdivision matrix: row i of level l+1 holds the weights of level-l control points
 /// (q^{l+1} = S q^l, eq. 5.11, applied to each coordinate).
 using SubdivisionMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+/// The least-squares projection P = (SᵀS)⁻¹Sᵀ of eq. (5.18), applied through a sparse Cholesky
+/// factorisation of SᵀS and never formed (it is dense). For comparison with Q on small and
+/// medium problems.
+class LeastSquaresProjection {
+ public:
+  explicit LeastSquaresProjection(const SubdivisionMatrix& S);
+  ~LeastSquaresProjection();
+  /// q^l = argmin ‖q^{l+1} − S q‖, column by column (one column per coordinate).
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& fine) const;
+
+ private:
+  struct Factor;
+  const SubdivisionMatrix& S_;
+  std::unique_ptr<Factor> factor_;
+};
 
 class SubdivisionHierarchy {
  public:

@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "mlshell/selection.hpp"
 #include "mlshell/subdivision_hierarchy.hpp"
 #include "physics_fixtures.hpp"
 
@@ -23,7 +24,8 @@ std::vector<NamedCage> cages() {
       {"square", add_ghost_ring(make_rectangle_cage(1, 1, 4, 4, 0, 0))},
       {"l-shape", add_ghost_ring(make_l_shape_cage(1, 1, 10, 10, 0.3, 0.3, 0, 0))}};
   for (int valence : {3, 5, 6, 8}) {
-    out.push_back({"interior valence " + std::to_string(valence), add_ghost_ring(fan_cage(valence))});
+    out.push_back(
+        {"interior valence " + std::to_string(valence), add_ghost_ring(fan_cage(valence))});
     out.push_back({"near-boundary valence " + std::to_string(valence),
                    add_ghost_ring(fan_cage(valence, true))});
   }
@@ -65,4 +67,44 @@ TEST(ReverseSubdivision, GivesFiniteValuesOffTheRangeOfS) {
   for (int i = 0; i < fine.size(); ++i) fine[i] = dist(rng);
   const Eigen::VectorXd coarse = h.reverse_subdivision(1) * fine;
   EXPECT_TRUE(coarse.allFinite());
+}
+
+TEST(LeastSquaresProjection, SatisfiesTheNormalEquationsAndAgreesWithQOnSubdividedData) {
+  SubdivisionHierarchy h(cages()[3].cage, 2);  // interior valence 5
+  const SubdivisionMatrix& S = h.subdivision(1);
+  LeastSquaresProjection P(S);
+  std::mt19937 rng(2);
+  std::normal_distribution<double> dist;
+  Eigen::MatrixXd fine(S.rows(), 3);
+  for (int i = 0; i < fine.rows(); ++i)
+    for (int c = 0; c < 3; ++c) fine(i, c) = dist(rng);
+  const Eigen::MatrixXd q = P.apply(fine);
+  ASSERT_TRUE(q.allFinite());
+  // Normal equations Sᵀ(S q − q^{l+1}) = 0: q minimises ‖q^{l+1} − S q‖.
+  EXPECT_LT(max_abs(S.transpose() * (S * q - fine)), 1e-10 * max_abs(fine));
+  // On data in the range of S, P and Q both recover the coarse points.
+  Eigen::MatrixXd coarse(S.cols(), 3);
+  for (int i = 0; i < coarse.rows(); ++i) coarse.row(i) = h.level(1).points[i].transpose();
+  EXPECT_LT(max_abs(P.apply(S * coarse) - coarse), 1e-11);
+  EXPECT_LT(max_abs(Eigen::MatrixXd(h.reverse_subdivision(1) * (S * coarse)) - coarse), 1e-13);
+}
+
+TEST(SubdivisionHierarchy, LevelsDescribeTheSameLimitSurface) {
+  // Nestedness (5.6): N^l q^l = N^{l+1} S q^l. Sample the limit surface of level l inside the
+  // domain and find each point on the limit surface of level l+1.
+  for (const NamedCage& c : cages()) {
+    if (c.name == "l-shape") continue;
+    SubdivisionHierarchy h(c.cage, 2);
+    Discretization coarse(h.level(1), 3), fine(h.level(2), 3);
+    std::vector<SurfacePoint> samples;
+    for (int f : coarse.elements()) samples.push_back({f, 0.3, 0.6});
+    const auto basis = coarse.evaluator().evaluate(samples);
+    double worst = 0.0;
+    for (const PointBasis& b : basis) {
+      double d = 0.0;
+      nearest_surface_point(fine, b.apply(kValue, coarse.mesh().points), &d);
+      worst = std::max(worst, d);
+    }
+    EXPECT_LT(worst, 1e-12) << c.name;
+  }
 }
