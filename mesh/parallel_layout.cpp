@@ -48,13 +48,19 @@ std::vector<int> partition_elements(const Discretization& disc, int parts) {
 }  // namespace
 
 ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc)
-    : comm_(comm), disc_(disc) {
+    : ParallelLayout(comm, disc, partition_elements(disc, [comm] {
+                       int size;
+                       MPI_Comm_size(comm, &size);
+                       return size;
+                     }())) {}  // METIS gives the same partition on every rank (same input, seed)
+
+ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc,
+                               std::vector<int> face_owner)
+    : comm_(comm), disc_(disc), face_owner_(std::move(face_owner)) {
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
   const int np = disc.num_points();
-  face_owner_ = partition_elements(disc, size_);  // identical on every rank (same input, seed)
   std::vector<int> point_owner(np, size_);
-  std::vector<std::set<int>> stencils_of_rank_points;
   std::vector<char> local(np, 0);
   for (int f : disc.elements()) {
     const int r = face_owner_[f];

@@ -3,8 +3,6 @@
 // points of level l (the outer ghost ring never feeds the inner one), which is checked here.
 #include "mlshell/subdivision_hierarchy.hpp"
 
-#include "reverse_subdivision.hpp"
-
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
@@ -12,6 +10,8 @@
 #include <cmath>
 #include <map>
 #include <memory>
+
+#include "reverse_subdivision.hpp"
 
 namespace mlshell {
 
@@ -113,8 +113,10 @@ SubdivisionHierarchy::SubdivisionHierarchy(const QuadMesh& cage, int refinements
     std::vector<int> remap(fine.GetNumVertices(), -1);
     QuadMesh next;
     std::vector<Eigen::Triplet<double>> triplets;
+    std::vector<int> parents;
     for (int f = 0; f < fine.GetNumFaces(); ++f) {
       if (!keep[f]) continue;
+      parents.push_back(fine.GetFaceParentFace(f));
       Quad q = fine_quads[f];
       for (int& v : q) {
         if (remap[v] < 0) {
@@ -136,6 +138,7 @@ SubdivisionHierarchy::SubdivisionHierarchy(const QuadMesh& cage, int refinements
     S.prune(0.0);
     subdivision_.push_back(std::move(S));
     reverse_.push_back(build_reverse_subdivision(*refiner, current, remap, next.num_points()));
+    parent_face_.push_back(std::move(parents));
     levels_.push_back(next);
     current = std::move(next);
   }

@@ -18,7 +18,11 @@ namespace mlshell {
 
 class ParallelLayout {
  public:
+  /// Partitions the elements with METIS.
   ParallelLayout(MPI_Comm comm, const Discretization& disc);
+  /// Uses the given owner rank of every face (only interior faces' owners matter), e.g. owners
+  /// inherited from a finer level so that transfers between levels stay mostly on-rank.
+  ParallelLayout(MPI_Comm comm, const Discretization& disc, std::vector<int> face_owner);
   ~ParallelLayout();
   ParallelLayout(const ParallelLayout&) = delete;
   ParallelLayout& operator=(const ParallelLayout&) = delete;
@@ -29,6 +33,9 @@ class ParallelLayout {
   /// Elements (natural face indices) this rank assembles, and the owner of any face.
   const std::vector<int>& local_elements() const { return local_elements_; }
   int face_owner(int face) const { return face_owner_[face]; }
+  const std::vector<int>& face_owners() const { return face_owner_; }
+  /// First PETSc block index owned by this rank.
+  int first_owned() const { return first_owned_; }
   /// Local points: owned ones first (PETSc order), then ghosts. Natural indices.
   const std::vector<int>& local_points() const { return local_points_; }
   int num_local_points() const { return static_cast<int>(local_points_.size()); }

@@ -46,10 +46,13 @@ class SubdivisionHierarchy {
   /// Q_{l+1}^l, the reverse subdivision projection from level l+1 onto level l (paper eq. 5.19
   /// with 5.21, Appendices B and C): sparse, local, and Q S = I.
   const SubdivisionMatrix& reverse_subdivision(int l) const { return reverse_[l]; }
+  /// For each face of level l+1, its parent face on level l.
+  const std::vector<int>& parent_faces(int l) const { return parent_face_[l]; }
 
  private:
   std::vector<QuadMesh> levels_;
   std::vector<SubdivisionMatrix> subdivision_, reverse_;
+  std::vector<std::vector<int>> parent_face_;
 };
 
 }  // namespace mlshell

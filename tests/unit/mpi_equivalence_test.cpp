@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "level_hierarchy_fixtures.hpp"
 #include "physics_fixtures.hpp"
 
 using namespace mlshell;
@@ -93,4 +94,45 @@ TEST(MpiEquivalence, SolvedStateAgreesWithOneRank) {
   }
   MPI_Barrier(PETSC_COMM_WORLD);
   if (rank == 0) std::filesystem::remove_all(dir);
+}
+
+TEST(MpiEquivalence, TransfersAndCompositeNormAgreeWithOneRank) {
+  HierarchyFixture distributed(PETSC_COMM_WORLD, 0), serial(PETSC_COMM_SELF, 0);
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  for (int l = 0; l < serial.levels->finest(); ++l) {
+    // Transfers mostly stay on-rank: coarse faces inherit their children's owners.
+    Mat on, off;
+    MatMPIAIJGetSeqAIJ(distributed.levels->prolongation(l), &on, &off, nullptr);
+    MatInfo on_info, off_info;
+    MatGetInfo(on, MAT_LOCAL, &on_info);
+    MatGetInfo(off, MAT_LOCAL, &off_info);
+    EXPECT_LT(off_info.nz_used, 0.25 * (on_info.nz_used + off_info.nz_used)) << "level " << l;
+    const auto x = serial.random(l, 10 + l), y = serial.random(l + 1, 20 + l);
+    const struct {
+      const char* name;
+      Mat a, b;
+      int from, to;
+      const std::vector<double>& in;
+    } ops[] = {
+        {"S", distributed.levels->prolongation(l), serial.levels->prolongation(l), l, l + 1, x},
+        {"R", distributed.levels->restriction(l), serial.levels->restriction(l), l + 1, l, y},
+        {"Q", distributed.levels->projection(l), serial.levels->projection(l), l + 1, l, y}};
+    for (const auto& op : ops) {
+      const auto a = distributed.apply(op.a, op.from, op.to, op.in);
+      const auto b = serial.apply(op.b, op.from, op.to, op.in);
+      if (rank == 0) EXPECT_LT(relative_difference(a, b), 1e-14) << op.name << " level " << l;
+    }
+    Vec xd, xs;
+    distributed.levels->layout(l).create_vector(&xd);
+    serial.levels->layout(l).create_vector(&xs);
+    distributed.levels->layout(l).scatter_natural(rank == 0 ? x : std::vector<double>{}, xd);
+    serial.levels->layout(l).scatter_natural(x, xs);
+    PetscReal nd, ns;
+    distributed.levels->composite_norm(l, xd, &nd);
+    serial.levels->composite_norm(l, xs, &ns);
+    EXPECT_NEAR(nd, ns, 1e-13 * ns);
+    VecDestroy(&xd);
+    VecDestroy(&xs);
+  }
 }
