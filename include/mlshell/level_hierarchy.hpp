@@ -13,6 +13,7 @@
 #include <petscmat.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mlshell/discretization.hpp"
@@ -56,6 +57,14 @@ class LevelHierarchy {
   std::vector<Level> levels_;
   std::vector<Transfer> transfers_;
 };
+
+/// Prints per level: control points, dofs, h, extraordinary vertices by valence, and nonzeros
+/// per row and memory of S, R and Q (`-mlshell_hierarchy_view`).
+PetscErrorCode view_hierarchy(const LevelHierarchy& levels, MPI_Comm comm);
+
+/// Writes each level's control cage (ghost ring included) and its limit surface as OBJ files
+/// `level_<l>_cage.obj` and `level_<l>_surface.obj` in `dir` (rank 0; `-mlshell_hierarchy_write`).
+void write_hierarchy(const LevelHierarchy& levels, const std::string& dir);
 
 /// A scalar sparse matrix (rows: points of `rows`, columns: points of `cols`, natural order) as
 /// an MPIAIJ matrix with block size 3 in the two layouts' PETSc numbering.

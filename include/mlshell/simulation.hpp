@@ -9,6 +9,8 @@
 //   -mlshell_steps <n>           override the scene's time.steps
 //   -mlshell_dt <dt>             override the scene's time.dt
 //   -mlshell_quiet               no per-step progress lines
+//   -mlshell_hierarchy_view      print the subdivision levels 0..refine and their transfers
+//   -mlshell_hierarchy_write DIR write each level's cage and limit surface (OBJ) to DIR
 #pragma once
 
 #include <petscvec.h>
@@ -30,6 +32,8 @@ struct SimulationOptions {
   bool evaluate_only = false;
   int gauss_points = 3;
   bool quiet = false;
+  bool hierarchy_view = false;
+  std::string hierarchy_write;  ///< folder, empty: don't write
   static SimulationOptions from_petsc_options();
 };
 

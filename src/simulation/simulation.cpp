@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mlshell/effects.hpp"
+#include "mlshell/level_hierarchy.hpp"
 #include "mlshell/output_files.hpp"
 #include "simulation_output.hpp"
 
@@ -26,6 +27,13 @@ SimulationOptions SimulationOptions::from_petsc_options() {
   PetscCallAbort(PETSC_COMM_WORLD,
                  PetscOptionsGetBool(nullptr, nullptr, "-mlshell_quiet", &flag, nullptr));
   o.quiet = flag;
+  flag = PETSC_FALSE;
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetBool(nullptr, nullptr, "-mlshell_hierarchy_view", &flag, nullptr));
+  o.hierarchy_view = flag;
+  char dir[PETSC_MAX_PATH_LEN];
+  PetscBool has_dir = PETSC_FALSE;
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetString(nullptr, nullptr, "-mlshell_hierarchy_write", dir, sizeof dir, &has_dir));
+  if (has_dir) o.hierarchy_write = dir;
   PetscCallAbort(PETSC_COMM_WORLD,
                  PetscOptionsGetInt(nullptr, nullptr, "-mlshell_gauss_points", &gauss, nullptr));
   if (gauss < 2 || gauss > 6)
@@ -72,6 +80,11 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   } catch (const MeshError& e) {
     throw SceneError(scene_.file.string() + ": geometry.cage: " + e.what());
   }
+  if (options_.hierarchy_view || !options_.hierarchy_write.empty()) {
+    const LevelHierarchy levels(comm, *hierarchy_, 0, options_.gauss_points);
+    if (options_.hierarchy_view) PetscCallAbort(comm, view_hierarchy(levels, comm));
+    if (!options_.hierarchy_write.empty()) write_hierarchy(levels, options_.hierarchy_write);
+  }
   disc_ = std::make_unique<Discretization>(hierarchy_->finest(), options_.gauss_points);
   layout_ = std::make_unique<ParallelLayout>(comm, *disc_);
   problem_ = build_level_problem(scene_, *disc_, *layout_, frame_);
@@ -95,19 +108,7 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
     fs::create_directories(output_->dir);
     // A summary left by an earlier run must not pass for this run's result.
     fs::remove(output_->dir / "summary.json");
-    const int k = scene_.output.samples_per_face;
-    std::vector<SurfacePoint> pts;
-    for (int f : disc_->elements()) {
-      const std::int64_t base = static_cast<std::int64_t>(pts.size());
-      for (int j = 0; j <= k; ++j)
-        for (int i = 0; i <= k; ++i) pts.push_back({f, double(i) / k, double(j) / k});
-      for (int j = 0; j < k; ++j)
-        for (int i = 0; i < k; ++i) {
-          const std::int64_t a = base + j * (k + 1) + i;
-          output_->quads.insert(output_->quads.end(), {a, a + 1, a + k + 2, a + k + 1});
-        }
-    }
-    output_->samples = disc_->evaluator().evaluate(pts);
+    output_->sampler = std::make_unique<SurfaceSampler>(*disc_, scene_.output.samples_per_face);
   }
 }
 

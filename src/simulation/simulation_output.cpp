@@ -17,18 +17,7 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
   std::vector<double> u;
   PetscCall(layout_->gather_natural(u_, u));
   if (rank_ == 0 && frame_due) {
-    SurfaceSample s;
-    const auto& X = disc_->mesh().points;
-    for (const PointBasis& b : output_->samples) {
-      Point3 x = b.apply(kValue, X), d = Point3::Zero();
-      for (int i = 0; i < b.size(); ++i)
-        for (int c = 0; c < 3; ++c) d[c] += b.w[kValue][i] * u[3 * b.nodes[i] + c];
-      for (int c = 0; c < 3; ++c) {
-        s.points.push_back(x[c] + d[c]);
-        s.displacement.push_back(d[c]);
-      }
-    }
-    s.quads = output_->quads;
+    const SurfaceSample s = output_->sampler->sample(u);
     const auto& formats = scene_.output.formats;
     auto has = [&](const char* f) {
       return std::find(formats.begin(), formats.end(), f) != formats.end();

@@ -9,6 +9,7 @@
 
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
+#include "mlshell/surface_sampler.hpp"
 
 namespace mlshell {
 
@@ -17,8 +18,7 @@ struct Simulation::Output {
   std::filesystem::path dir;
   std::unique_ptr<XdmfSeries> xdmf;
   std::unique_ptr<CsvTable> csv;
-  std::vector<PointBasis> samples;  // limit-surface sample points, face by face
-  std::vector<std::int64_t> quads;
+  std::unique_ptr<SurfaceSampler> sampler;
   std::vector<std::string> effect_names;
 };
 
