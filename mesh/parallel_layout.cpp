@@ -60,16 +60,22 @@ ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc,
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
   const int np = disc.num_points();
-  std::vector<int> point_owner(np, size_);
+  // A point belongs to the lowest rank among the elements it is a corner of, so ownership
+  // follows the element partition; points that are corners of no element (the ghost ring) go to
+  // the lowest rank whose element stencils use them.
+  std::vector<int> point_owner(np, size_), stencil_owner(np, size_);
   std::vector<char> local(np, 0);
   for (int f : disc.elements()) {
     const int r = face_owner_[f];
+    for (int v : disc.mesh().quads[f]) point_owner[v] = std::min(point_owner[v], r);
     for (int v : disc.stencil(f)) {
-      point_owner[v] = std::min(point_owner[v], r);
+      stencil_owner[v] = std::min(stencil_owner[v], r);
       if (r == rank_) local[v] = 1;
     }
     if (r == rank_) local_elements_.push_back(f);
   }
+  for (int v = 0; v < np; ++v)
+    if (point_owner[v] == size_) point_owner[v] = stencil_owner[v];
   // PETSc numbering: rank by rank, natural order within a rank.
   petsc_of_natural_.assign(np, -1);
   int next = 0;

@@ -107,7 +107,10 @@ TEST(MpiEquivalence, TransfersAndCompositeNormAgreeWithOneRank) {
     MatInfo on_info, off_info;
     MatGetInfo(on, MAT_LOCAL, &on_info);
     MatGetInfo(off, MAT_LOCAL, &off_info);
-    EXPECT_LT(off_info.nz_used, 0.25 * (on_info.nz_used + off_info.nz_used)) << "level " << l;
+    // (Only where the coarse level has some interior per rank: on a 15-element cage half of
+    // every partition is interface.)
+    if (serial.levels->discretization(l).elements().size() >= 50)
+      EXPECT_LT(off_info.nz_used, 0.25 * (on_info.nz_used + off_info.nz_used)) << "level " << l;
     const auto x = serial.random(l, 10 + l), y = serial.random(l + 1, 20 + l);
     const struct {
       const char* name;
