@@ -1,0 +1,50 @@
+// Per-level problems and their synchronisation in time (see multilevel_problem.hpp).
+#include "mlshell/multilevel_problem.hpp"
+
+#include "mlshell/effect_builder.hpp"
+#include "mlshell/effects.hpp"
+
+namespace mlshell {
+
+MultilevelProblem::MultilevelProblem(const Scene& scene, const LevelHierarchy& levels,
+                                     const CageFrame& frame)
+    : levels_(levels), dt_(scene.time.dt) {
+  for (int l = 0; l < levels.num_levels(); ++l) {
+    problems_.push_back(
+        build_level_problem(scene, levels.discretization(l), levels.layout(l), frame));
+    Vec u, v;
+    PetscCallAbort(levels.layout(l).comm(), levels.layout(l).create_vector(&u));
+    PetscCallAbort(levels.layout(l).comm(), levels.layout(l).create_vector(&v));
+    u_.push_back(u);
+    v_.push_back(v);
+  }
+}
+
+MultilevelProblem::~MultilevelProblem() {
+  for (Vec& u : u_) VecDestroy(&u);
+  for (Vec& v : v_) VecDestroy(&v);
+}
+
+PetscErrorCode MultilevelProblem::synchronize(double time, Vec u_finest, Vec v_finest) {
+  PetscFunctionBeginUser;
+  const int top = levels_.finest();
+  PetscCall(VecCopy(u_finest, u_[top]));
+  PetscCall(VecCopy(v_finest, v_[top]));
+  PetscCall(levels_.project_down(u_[top], u_));
+  PetscCall(levels_.project_down(v_[top], v_));
+  for (int l = 0; l <= top; ++l) {
+    problems_[l]->set_time(time);
+    if (auto* inertia = problems_[l]->find_term<InertiaTerm>()) {
+      Vec predictor;
+      std::vector<double> local;
+      PetscCall(VecDuplicate(u_[l], &predictor));
+      PetscCall(VecWAXPY(predictor, dt_, v_[l], u_[l]));
+      PetscCall(levels_.layout(l).to_local(predictor, local));
+      PetscCall(VecDestroy(&predictor));
+      inertia->set_predictor(std::move(local));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell
