@@ -3,7 +3,13 @@
 // points and extraordinary vertices of valence 3, 5, 6 and 8, interior and near the boundary.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
 #include <random>
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
 #include <string>
 
 #include "mlshell/selection.hpp"
@@ -106,5 +112,57 @@ TEST(SubdivisionHierarchy, LevelsDescribeTheSameLimitSurface) {
       worst = std::max(worst, d);
     }
     EXPECT_LT(worst, 1e-12) << c.name;
+  }
+}
+
+namespace {
+
+/// A position for OpenSubdiv's PrimvarRefiner.
+struct Position {
+  Point3 p = Point3::Zero();
+  void Clear() { p.setZero(); }
+  void AddWithWeight(const Position& src, double w) { p += w * src.p; }
+};
+
+}  // namespace
+
+TEST(SubdivisionHierarchy, TrimmedLevelsMatchOpenSubdivOnTheUntrimmedCage) {
+  // Independent reference: refine the whole cage (all ghost layers kept) with OpenSubdiv and
+  // interpolate positions directly. Every kept point of the trimmed hierarchy (whose levels are
+  // S applied to the previous kept level) must coincide with a point of that refinement: the
+  // dropped outer ghost ring never influences the kept points.
+  for (const NamedCage& c : cages()) {
+    const int levels = 2;
+    SubdivisionHierarchy h(c.cage, levels);
+    namespace Far = OpenSubdiv::Far;
+    std::vector<int> nverts(c.cage.num_faces(), 4);
+    std::vector<Far::Index> idx;
+    for (const Quad& q : c.cage.quads) idx.insert(idx.end(), q.begin(), q.end());
+    Far::TopologyDescriptor desc;
+    desc.numVertices = c.cage.num_points();
+    desc.numFaces = c.cage.num_faces();
+    desc.numVertsPerFace = nverts.data();
+    desc.vertIndicesPerFace = idx.data();
+    OpenSubdiv::Sdc::Options sdc;
+    sdc.SetVtxBoundaryInterpolation(OpenSubdiv::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    std::unique_ptr<Far::TopologyRefiner> refiner(
+        Factory::Create(desc, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, sdc)));
+    refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+    std::vector<Position> current(c.cage.num_points());
+    for (int i = 0; i < c.cage.num_points(); ++i) current[i].p = c.cage.points[i];
+    for (int l = 1; l <= levels; ++l) {
+      std::vector<Position> next(refiner->GetLevel(l).GetNumVertices());
+      Far::PrimvarRefinerReal<double>(*refiner).Interpolate(l, current, next);
+      current = std::move(next);
+      // Each kept point of level l equals some refined point (nearest within 1e-13).
+      double worst = 0.0;
+      for (const Point3& p : h.level(l).points) {
+        double best = INFINITY;
+        for (const Position& q : current) best = std::min(best, (q.p - p).norm());
+        worst = std::max(worst, best);
+      }
+      EXPECT_LT(worst, 1e-13) << c.name << ", level " << l;
+    }
   }
 }
