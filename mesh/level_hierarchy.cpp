@@ -64,7 +64,32 @@ LevelHierarchy::~LevelHierarchy() {
     MatDestroy(&t.S);
     MatDestroy(&t.R);
     MatDestroy(&t.Q);
+    MatDestroy(&t.StS);
+    KSPDestroy(&t.normal);
   }
+}
+
+PetscErrorCode LevelHierarchy::least_squares_projection(int l, Vec fine, Vec coarse) const {
+  PetscFunctionBeginUser;
+  Transfer& t = transfers_[l];
+  if (!t.normal) {
+    PetscCall(MatTransposeMatMult(t.S, t.S, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t.StS));
+    PetscCall(KSPCreate(PetscObjectComm((PetscObject)t.S), &t.normal));
+    PetscCall(KSPSetOptionsPrefix(t.normal, "mlshell_lsq_"));
+    PetscCall(KSPSetOperators(t.normal, t.StS, t.StS));
+    PetscCall(KSPSetType(t.normal, KSPPREONLY));
+    PC pc;
+    PetscCall(KSPGetPC(t.normal, &pc));
+    PetscCall(PCSetType(pc, PCCHOLESKY));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PetscCall(KSPSetFromOptions(t.normal));
+  }
+  Vec rhs;
+  PetscCall(VecDuplicate(coarse, &rhs));
+  PetscCall(MatMult(t.R, fine, rhs));
+  PetscCall(KSPSolve(t.normal, rhs, coarse));
+  PetscCall(VecDestroy(&rhs));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode LevelHierarchy::composite_norm(int l, Vec x, PetscReal* norm) const {

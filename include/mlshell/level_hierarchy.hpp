@@ -10,7 +10,7 @@
 // all MPIAIJ with block size 3 (each scalar weight acts on x, y and z alike).
 #pragma once
 
-#include <petscmat.h>
+#include <petscksp.h>
 
 #include <memory>
 #include <string>
@@ -40,6 +40,11 @@ class LevelHierarchy {
   Mat restriction(int l) const { return transfers_[l].R; }
   Mat projection(int l) const { return transfers_[l].Q; }
 
+  /// The least-squares projection P = (SᵀS)⁻¹Sᵀ (eq. 5.18) of fine values onto level l: a
+  /// solve with the sparse SᵀS (MUMPS Cholesky, set up on first use; P itself is dense and never
+  /// formed). For comparison with Q on small and medium problems.
+  PetscErrorCode least_squares_projection(int l, Vec fine, Vec coarse) const;
+
   /// ‖I_{L−1}^L ⋯ I_l^{l+1} x‖₂ (eq. 4.9), applying the prolongations one after the other.
   PetscErrorCode composite_norm(int l, Vec x, PetscReal* norm) const;
   /// Fills `coarse[l]` (created by the caller from layout(l)) with the projections Q of the
@@ -53,9 +58,11 @@ class LevelHierarchy {
   };
   struct Transfer {
     Mat S = nullptr, R = nullptr, Q = nullptr;
+    Mat StS = nullptr;  // for P, on first use
+    KSP normal = nullptr;
   };
   std::vector<Level> levels_;
-  std::vector<Transfer> transfers_;
+  mutable std::vector<Transfer> transfers_;
 };
 
 /// Prints per level: control points, dofs, h, extraordinary vertices by valence, and nonzeros

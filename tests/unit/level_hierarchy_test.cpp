@@ -60,3 +60,26 @@ TEST(LevelHierarchy, CompositeNormProlongatesToTheFinestLevel) {
   EXPECT_NEAR(norm, v.norm(), 1e-13 * v.norm());
   VecDestroy(&xv);
 }
+
+TEST(LevelHierarchy, LeastSquaresProjectionSolvesTheNormalEquations) {
+  HierarchyFixture fx(PETSC_COMM_SELF, 0);
+  for (int l = 0; l < fx.levels->finest(); ++l) {
+    const auto y = fx.random(l + 1, 7);
+    Vec fine, coarse, back, normal;
+    fx.levels->layout(l + 1).create_vector(&fine);
+    fx.levels->layout(l).create_vector(&coarse);
+    fx.levels->layout(l).create_vector(&normal);
+    fx.levels->layout(l + 1).scatter_natural(y, fine);
+    fx.levels->least_squares_projection(l, fine, coarse);
+    // Sᵀ(S q − y) = 0
+    VecDuplicate(fine, &back);
+    MatMult(fx.levels->prolongation(l), coarse, back);
+    VecAXPY(back, -1.0, fine);
+    MatMult(fx.levels->restriction(l), back, normal);
+    PetscReal r, ynorm;
+    VecNorm(normal, NORM_INFINITY, &r);
+    VecNorm(fine, NORM_INFINITY, &ynorm);
+    EXPECT_LT(r, 1e-10 * ynorm) << "level " << l;
+    for (Vec* v : {&fine, &coarse, &back, &normal}) VecDestroy(v);
+  }
+}

@@ -126,6 +126,23 @@ TEST(MpiEquivalence, TransfersAndCompositeNormAgreeWithOneRank) {
       const auto b = serial.apply(op.b, op.from, op.to, op.in);
       if (rank == 0) EXPECT_LT(relative_difference(a, b), 1e-14) << op.name << " level " << l;
     }
+    // The least-squares projection P on 2 ranks equals the one on 1 rank.
+    {
+      Vec fd, fs, cd, cs;
+      distributed.levels->layout(l + 1).create_vector(&fd);
+      serial.levels->layout(l + 1).create_vector(&fs);
+      distributed.levels->layout(l).create_vector(&cd);
+      serial.levels->layout(l).create_vector(&cs);
+      distributed.levels->layout(l + 1).scatter_natural(rank == 0 ? y : std::vector<double>{}, fd);
+      serial.levels->layout(l + 1).scatter_natural(y, fs);
+      distributed.levels->least_squares_projection(l, fd, cd);
+      serial.levels->least_squares_projection(l, fs, cs);
+      std::vector<double> a, b;
+      distributed.levels->layout(l).gather_natural(cd, a);
+      serial.levels->layout(l).gather_natural(cs, b);
+      if (rank == 0) EXPECT_LT(relative_difference(a, b), 1e-10) << "P level " << l;
+      for (Vec* v : {&fd, &fs, &cd, &cs}) VecDestroy(v);
+    }
     Vec xd, xs;
     distributed.levels->layout(l).create_vector(&xd);
     serial.levels->layout(l).create_vector(&xs);
