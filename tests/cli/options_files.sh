@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# PETSc options files: a scene may name one (solver.options_file, relative to the scene), PETSc's
+# own -options_file works with plain and YAML files, and the command line wins over both.
+#
+# usage: bash options_files.sh MLSHELL SOURCE_DIR WORK_DIR
+set -euo pipefail
+
+source "$(dirname "$0")/lib/common.bash" "$@"
+
+mkdir -p scene
+cat >scene/opts.yaml <<'YAML'
+tao:
+  type: bnls
+YAML
+printf -- '-tao_type bntl\n' >plain.rc
+sed -e 's|out/plate|out|' -e 's|refine: 3|refine: 1|' "$SRC/examples/plate.yaml" >scene/plate.yaml
+printf 'solver: {options_file: opts.yaml}\n' >>scene/plate.yaml
+
+solver_type() {  # solver_type ARGS...: runs the plate and prints summary.json's solver.type
+  rm -rf out
+  "$MLSHELL" scene/plate.yaml -mlshell_quiet "$@" >run.log 2>&1 || die "exit $?: $(cat run.log)"
+  $PY -c "import json; print(json.load(open('out/summary.json'))['solver']['type'])"
+}
+
+echo "check: the scene's options file selects the solver"
+[[ $(solver_type) == bnls ]] || die "scene options file not applied: $(solver_type)"
+echo "check: the command line wins over the scene's options file"
+[[ $(solver_type -tao_type bntr) == bntr ]] || die "command line did not win"
+echo "check: PETSc's -options_file (plain) works and wins over the scene's file"
+[[ $(solver_type -options_file "$WORK/plain.rc") == bntl ]] || die "-options_file not applied"
+echo "check: the shipped options files in petsc-options/ are valid"
+for f in "$SRC"/petsc-options/*.yaml; do
+  t=$(solver_type -options_file "$f")
+  [[ -n $t ]] || die "$f: no solver type"
+  $PY -c "import json,sys; s=json.load(open('out/summary.json')); sys.exit(0 if s['solver']['converged'] else 1)" ||
+    die "$f: the plate did not converge"
+done
+echo "PASS"
