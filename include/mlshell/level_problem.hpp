@@ -36,6 +36,8 @@ class LevelProblem {
   PetscErrorCode create_matrix(Mat* H) const { return layout_.create_matrix(H); }
   /// Global energy of each term at u, in the order of terms().
   PetscErrorCode term_energies(Vec u, std::vector<double>& energies);
+  /// Energy of each term, the total f(u) and ‖∇f(u)‖₂ at u (for reports).
+  PetscErrorCode report(Vec u, std::vector<double>& energies, PetscReal* total, PetscReal* gnorm);
 
   long objective_evaluations() const { return objective_evaluations_; }
   /// Evaluations whose energy was not finite: trial points outside a material's valid domain.

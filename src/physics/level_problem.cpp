@@ -72,4 +72,16 @@ PetscErrorCode LevelProblem::term_energies(Vec u, std::vector<double>& energies)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode LevelProblem::report(Vec u, std::vector<double>& energies, PetscReal* total,
+                                    PetscReal* gnorm) {
+  PetscFunctionBeginUser;
+  PetscCall(term_energies(u, energies));
+  Vec g;
+  PetscCall(VecDuplicate(u, &g));
+  PetscCall(objective(u, total, g));
+  PetscCall(VecNorm(g, NORM_2, gnorm));
+  PetscCall(VecDestroy(&g));
+  PetscFunctionReturn(0);
+}
+
 }  // namespace mlshell

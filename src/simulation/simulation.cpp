@@ -178,13 +178,8 @@ PetscErrorCode Simulation::evaluate(int* status) {
     inertia->set_predictor(local);
   }
   std::vector<double> energies;
-  PetscCall(problem_->term_energies(u_, energies));
-  Vec g;
   PetscReal f, gnorm;
-  PetscCall(VecDuplicate(u_, &g));
-  PetscCall(problem_->objective(u_, &f, g));
-  PetscCall(VecNorm(g, NORM_2, &gnorm));
-  PetscCall(VecDestroy(&g));
+  PetscCall(problem_->report(u_, energies, &f, &gnorm));
   PetscCall(PetscPrintf(comm_, "mlshell: %s: %d dofs on %d rank(s), initial state\n",
                         scene_.name.c_str(), disc_->num_dofs(), size_));
   for (size_t i = 0; i < energies.size(); ++i)

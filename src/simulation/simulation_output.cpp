@@ -52,13 +52,8 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
 PetscErrorCode Simulation::write_summary(const std::string& status, const SolveReport* last) {
   PetscFunctionBeginUser;
   std::vector<double> energies, u;
-  PetscCall(problem_->term_energies(u_, energies));
-  Vec g;
   PetscReal f, gnorm;
-  PetscCall(VecDuplicate(u_, &g));
-  PetscCall(problem_->objective(u_, &f, g));
-  PetscCall(VecNorm(g, NORM_2, &gnorm));
-  PetscCall(VecDestroy(&g));
+  PetscCall(problem_->report(u_, energies, &f, &gnorm));
   PetscCall(layout_->gather_natural(u_, u));
   if (rank_ == 0) {
     Json::Object energy;

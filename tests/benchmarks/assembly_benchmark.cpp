@@ -65,12 +65,3 @@ BENCHMARK(BM_ElasticEnergyGradient)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ElasticEnergyGradientHessian)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  PetscInitialize(&argc, &argv, nullptr, nullptr);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  PetscFinalize();
-  return 0;
-}

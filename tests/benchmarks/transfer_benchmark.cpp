@@ -57,12 +57,3 @@ BENCHMARK(BM_BuildHierarchy)->Arg(5)->Arg(6)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ApplyTransfer)->ArgsProduct({{5, 6}, {0, 1, 2, 3}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  PetscInitialize(&argc, &argv, nullptr, nullptr);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  PetscFinalize();
-  return 0;
-}
