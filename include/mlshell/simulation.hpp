@@ -50,6 +50,8 @@ class Simulation {
   const Discretization& discretization() const { return *disc_; }
   LevelProblem& problem() { return *problem_; }
   Vec displacement() const { return u_; }
+  /// Solver iterations summed over the steps run so far.
+  long iterations() const { return total_iterations_; }
   /// Natural-order displacement on rank 0.
   PetscErrorCode natural_displacement(std::vector<double>& u) const;
 

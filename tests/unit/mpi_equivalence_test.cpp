@@ -156,3 +156,24 @@ TEST(MpiEquivalence, TransfersAndCompositeNormAgreeWithOneRank) {
     VecDestroy(&xs);
   }
 }
+
+TEST(MpiEquivalence, LocalTrustRegionTakesTheSameIterationsOnOneAndTwoRanks) {
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto dir = std::filesystem::temp_directory_path() / "mlshell_mpi_tr";
+  Scene scene = parse_scene(std::filesystem::path(MLSHELL_SOURCE_DIR) / "examples/trampoline.yaml");
+  scene.geometry.refine = 1;
+  scene.time.steps = 2;
+  PetscOptionsSetValue(nullptr, "-tao_type", "tr");
+  const SolvedScene parallel = solve_scene(scene, PETSC_COMM_WORLD, dir / "parallel");
+  const SolvedScene serial =
+      solve_scene(scene, PETSC_COMM_SELF, dir / ("serial" + std::to_string(rank)));
+  PetscOptionsClearValue(nullptr, "-tao_type");
+  EXPECT_EQ(parallel.status, 0);
+  EXPECT_EQ(serial.status, 0);
+  EXPECT_GT(serial.simulation->iterations(), 2);
+  EXPECT_EQ(parallel.simulation->iterations(), serial.simulation->iterations());
+  if (rank == 0) EXPECT_LT(relative_difference(parallel.displacement, serial.displacement), 1e-10);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (rank == 0) std::filesystem::remove_all(dir);
+}

@@ -1,0 +1,67 @@
+// Trust-region subproblems (paper eq. 4.1): approximately minimise the quadratic model
+//   m(s) = gᵀs + ½ sᵀHs   subject to ‖s‖ ≤ Δ,
+// with a sufficient decrease (SDC). Two strategies (paper §7.3):
+//
+//  * Dogleg (Powell; Nocedal & Wright, Numerical Optimization, §4.1): the path from the Cauchy
+//    point p_C = −(gᵀg / gᵀHg) g to the Newton point p_N = −H⁻¹g, cut at the boundary. The
+//    Newton point comes from a sparse direct factorisation through PETSc (options prefix
+//    `<prefix>`, default Cholesky (LDLᵀ) by MUMPS). If H is indefinite or singular — negative
+//    eigenvalues in the inertia of the LDLᵀ factor, negative curvature along g or p_N, a
+//    failed factorisation, or a Newton point that is not a descent direction — the step falls
+//    back to the Cauchy point (steepest descent to the boundary when gᵀHg ≤ 0), so a step is
+//    never NaN.
+//  * Steihaug–Toint CG: PETSc's KSPSTCG with the radius, a maximum iteration count (10 as a
+//    smoother) and the model value from KSPCGGetObjFcn; it stops at the boundary on negative
+//    curvature.
+#pragma once
+
+#include <petscksp.h>
+
+#include <string>
+
+namespace mlshell {
+
+struct QpResult {
+  PetscReal model_decrease = 0.0;  ///< m(0) − m(s) (≥ 0 for an acceptable step)
+  PetscReal step_norm = 0.0;
+  int iterations = 0;     ///< CG iterations (STCG) or factorisations (Dogleg)
+  const char* kind = "";  ///< "newton", "dogleg", "cauchy", "boundary", "interior"
+};
+
+class TrustRegionQp {
+ public:
+  virtual ~TrustRegionQp() = default;
+  /// Computes s for the model (g, H) and radius Δ. H must not change between set_operator calls.
+  virtual PetscErrorCode set_operator(Mat H) = 0;
+  virtual PetscErrorCode solve(Vec g, PetscReal radius, Vec s, QpResult& result) = 0;
+};
+
+class DoglegQp final : public TrustRegionQp {
+ public:
+  DoglegQp(MPI_Comm comm, const std::string& prefix);
+  ~DoglegQp() override;
+  PetscErrorCode set_operator(Mat H) override;
+  PetscErrorCode solve(Vec g, PetscReal radius, Vec s, QpResult& result) override;
+
+ private:
+  PetscErrorCode factor();
+  KSP ksp_ = nullptr;
+  Mat H_ = nullptr;
+  bool factored_ = false, factor_failed_ = false, indefinite_ = false;
+};
+
+class SteihaugTointQp final : public TrustRegionQp {
+ public:
+  SteihaugTointQp(MPI_Comm comm, const std::string& prefix, int max_iterations);
+  ~SteihaugTointQp() override;
+  PetscErrorCode set_operator(Mat H) override;
+  PetscErrorCode solve(Vec g, PetscReal radius, Vec s, QpResult& result) override;
+
+ private:
+  KSP ksp_ = nullptr;
+};
+
+/// m(s) = gᵀs + ½ sᵀHs.
+PetscErrorCode quadratic_model(Mat H, Vec g, Vec s, PetscReal* m);
+
+}  // namespace mlshell

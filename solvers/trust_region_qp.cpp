@@ -1,0 +1,204 @@
+// Dogleg and Steihaug–Toint CG trust-region subproblem solvers (see trust_region_qp.hpp).
+#include "mlshell/trust_region_qp.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace mlshell {
+
+PetscErrorCode quadratic_model(Mat H, Vec g, Vec s, PetscReal* m) {
+  Vec Hs;
+  PetscReal gs, sHs;
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(s, &Hs));
+  PetscCall(MatMult(H, s, Hs));
+  PetscCall(VecDot(g, s, &gs));
+  PetscCall(VecDot(s, Hs, &sHs));
+  PetscCall(VecDestroy(&Hs));
+  *m = gs + 0.5 * sHs;
+  PetscFunctionReturn(0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Dogleg
+
+DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix) {
+  PetscCallAbort(comm, KSPCreate(comm, &ksp_));
+  PetscCallAbort(comm, KSPSetOptionsPrefix(ksp_, prefix.c_str()));
+  PetscCallAbort(comm, KSPSetType(ksp_, KSPPREONLY));
+  PC pc;
+  PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
+  PetscCallAbort(comm, PCSetType(pc, PCCHOLESKY));
+  PetscCallAbort(comm, PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+}
+
+DoglegQp::~DoglegQp() { KSPDestroy(&ksp_); }
+
+PetscErrorCode DoglegQp::set_operator(Mat H) {
+  PetscFunctionBeginUser;
+  H_ = H;
+  PetscCall(KSPSetOperators(ksp_, H, H));
+  factored_ = factor_failed_ = indefinite_ = false;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DoglegQp::factor() {
+  PetscFunctionBeginUser;
+  factored_ = true;
+  PC pc;
+  PCType type;
+  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(PCGetType(pc, &type));
+  const bool cholesky = type && std::string(type) == PCCHOLESKY;
+  MatSolverType package = nullptr;
+  if (cholesky) {
+    PetscCall(PCFactorSetUpMatSolverType(pc));
+    PetscCall(PCFactorGetMatSolverType(pc, &package));
+    Mat F;
+    PetscCall(PCFactorGetMatrix(pc, &F));
+    // MUMPS reports the inertia of its LDLᵀ factor correctly in parallel only with ICNTL(13) = 1.
+    if (package && std::string(package) == MATSOLVERMUMPS) PetscCall(MatMumpsSetIcntl(F, 13, 1));
+  }
+  PetscCall(KSPSetUp(ksp_));
+  PCFailedReason failed;
+  PetscCall(PCGetFailedReason(pc, &failed));
+  factor_failed_ = failed != PC_NOERROR;
+  if (cholesky && !factor_failed_ && package && std::string(package) == MATSOLVERMUMPS) {
+    // A negative eigenvalue of H: no Newton point to go towards. (Zero pivots would need
+    // ICNTL(24); a singular H shows up as a failed factorisation or a non-finite Newton point.)
+    Mat F;
+    PetscInt negative;
+    PetscCall(PCFactorGetMatrix(pc, &F));
+    PetscCall(MatGetInertia(F, &negative, nullptr, nullptr));
+    indefinite_ = negative > 0;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result) {
+  PetscFunctionBeginUser;
+  PetscReal gnorm, gHg;
+  PetscCall(VecNorm(g, NORM_2, &gnorm));
+  result = QpResult{};
+  if (gnorm == 0.0) {
+    PetscCall(VecZeroEntries(s));
+    result.kind = "interior";
+    PetscFunctionReturn(0);
+  }
+  Vec Hg, pC, pN;
+  PetscCall(VecDuplicate(g, &Hg));
+  PetscCall(VecDuplicate(g, &pC));
+  PetscCall(VecDuplicate(g, &pN));
+  PetscCall(MatMult(H_, g, Hg));
+  PetscCall(VecDot(g, Hg, &gHg));
+  // Cauchy point: the model's minimiser along −g within the region.
+  bool done = false;
+  if (!(gHg > 0.0) || gnorm * gnorm / gHg * gnorm >= radius) {
+    PetscCall(VecAXPBY(s, -radius / gnorm, 0.0, g));  // to the boundary
+    result.kind = "cauchy";
+    done = true;
+  } else {
+    PetscCall(VecAXPBY(pC, -gnorm * gnorm / gHg, 0.0, g));
+  }
+  if (!done) {
+    // Newton point p_N = −H⁻¹g; the factorisation is computed once per operator.
+    if (!factored_) PetscCall(factor());
+    bool newton_ok = !factor_failed_ && !indefinite_;
+    if (newton_ok) {
+      PetscCall(KSPSolve(ksp_, g, pN));
+      PetscCall(VecScale(pN, -1.0));
+      ++result.iterations;
+      KSPConvergedReason reason;
+      PetscCall(KSPGetConvergedReason(ksp_, &reason));
+      PetscReal gp, pHp, pnorm;
+      PetscCall(VecDot(g, pN, &gp));
+      PetscCall(quadratic_model(H_, g, pN, &pHp));  // m(p_N) = gᵀp + ½ pᵀHp
+      pHp = 2.0 * (pHp - gp);
+      PetscCall(VecNorm(pN, NORM_2, &pnorm));
+      // Indefinite or singular H: no usable Newton point.
+      newton_ok = reason >= 0 && std::isfinite(pnorm) && gp < 0.0 && pHp > 0.0;
+      if (reason < 0) factor_failed_ = true;
+    }
+    if (!newton_ok) {
+      PetscCall(VecCopy(pC, s));
+      result.kind = "cauchy";
+    } else {
+      PetscReal pnorm;
+      PetscCall(VecNorm(pN, NORM_2, &pnorm));
+      if (pnorm <= radius) {
+        PetscCall(VecCopy(pN, s));
+        result.kind = "newton";
+      } else {
+        // ‖p_C + t (p_N − p_C)‖ = Δ for t ∈ [0, 1].
+        Vec d = pN;
+        PetscCall(VecAXPY(d, -1.0, pC));
+        PetscReal a, b, c;
+        PetscCall(VecDot(d, d, &a));
+        PetscCall(VecDot(pC, d, &b));
+        PetscCall(VecDot(pC, pC, &c));
+        b *= 2.0;
+        c -= radius * radius;
+        const PetscReal t = (-b + std::sqrt(std::max(0.0, b * b - 4.0 * a * c))) / (2.0 * a);
+        PetscCall(VecWAXPY(s, t, d, pC));
+        result.kind = "dogleg";
+      }
+    }
+  }
+  PetscReal m;
+  PetscCall(quadratic_model(H_, g, s, &m));
+  result.model_decrease = -m;
+  PetscCall(VecNorm(s, NORM_2, &result.step_norm));
+  PetscCall(VecDestroy(&Hg));
+  PetscCall(VecDestroy(&pC));
+  PetscCall(VecDestroy(&pN));
+  PetscFunctionReturn(0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Steihaug–Toint CG
+
+SteihaugTointQp::SteihaugTointQp(MPI_Comm comm, const std::string& prefix, int max_iterations) {
+  PetscCallAbort(comm, KSPCreate(comm, &ksp_));
+  PetscCallAbort(comm, KSPSetOptionsPrefix(ksp_, prefix.c_str()));
+  PetscCallAbort(comm, KSPSetType(ksp_, KSPSTCG));
+  PetscCallAbort(comm, KSPSetTolerances(ksp_, 1e-10, PETSC_DEFAULT, PETSC_DEFAULT, max_iterations));
+  PC pc;
+  PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
+  PetscCallAbort(comm, PCSetType(pc, PCNONE));
+  PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+}
+
+SteihaugTointQp::~SteihaugTointQp() { KSPDestroy(&ksp_); }
+
+PetscErrorCode SteihaugTointQp::set_operator(Mat H) {
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetOperators(ksp_, H, H));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SteihaugTointQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result) {
+  PetscFunctionBeginUser;
+  result = QpResult{};
+  Vec b;
+  PetscCall(VecDuplicate(g, &b));
+  PetscCall(VecAXPBY(b, -1.0, 0.0, g));  // STCG minimises ½ sᵀHs − sᵀb
+  PetscCall(KSPCGSetRadius(ksp_, radius));
+  PetscCall(KSPSolve(ksp_, b, s));
+  PetscCall(VecDestroy(&b));
+  PetscInt its;
+  PetscReal obj;
+  KSPConvergedReason reason;
+  PetscCall(KSPGetIterationNumber(ksp_, &its));
+  PetscCall(KSPCGGetObjFcn(ksp_, &obj));
+  PetscCall(KSPGetConvergedReason(ksp_, &reason));
+  PetscCall(VecNorm(s, NORM_2, &result.step_norm));
+  result.iterations = static_cast<int>(its);
+  result.model_decrease = -obj;
+  result.kind = (reason == KSP_CONVERGED_CG_NEG_CURVE || reason == KSP_CONVERGED_CG_CONSTRAINED)
+                    ? "boundary"
+                    : "interior";
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell
