@@ -168,6 +168,24 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A) const {
   PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(MatSetOption(*A, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(*A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  Vec coordinates;
+  MatNullSpace rigid;
+  PetscCall(create_coordinates(&coordinates));
+  PetscCall(MatNullSpaceCreateRigidBody(coordinates, &rigid));
+  PetscCall(MatSetNearNullSpace(*A, rigid));
+  PetscCall(MatNullSpaceDestroy(&rigid));
+  PetscCall(VecDestroy(&coordinates));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParallelLayout::create_coordinates(Vec* x) const {
+  PetscFunctionBeginUser;
+  PetscCall(create_vector(x));
+  PetscScalar* a;
+  PetscCall(VecGetArray(*x, &a));
+  for (int i = 0; i < num_owned_; ++i)
+    for (int c = 0; c < 3; ++c) a[3 * i + c] = disc_.mesh().points[local_points_[i]][c];
+  PetscCall(VecRestoreArray(*x, &a));
   PetscFunctionReturn(0);
 }
 

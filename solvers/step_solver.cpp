@@ -40,6 +40,7 @@ StepSolver::StepSolver(LevelProblem& problem) : problem_(problem) {
   PetscCallAbort(comm, default_option("-tao_grtol", "0"));
   PetscCallAbort(comm, default_option("-tao_max_it", "1000"));
   PetscCallAbort(comm, register_trust_region_tao_types());
+  PetscCallAbort(comm, register_newton_baseline_tao_types());
   PetscCallAbort(comm, TaoCreate(comm, &tao_));
   PetscCallAbort(comm, problem.create_matrix(&H_));
   PetscCallAbort(comm,

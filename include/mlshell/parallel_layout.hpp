@@ -46,8 +46,11 @@ class ParallelLayout {
 
   /// A global vector of displacements (block size 3, PETSc order).
   PetscErrorCode create_vector(Vec* v) const;
-  /// A block-size-3 AIJ matrix preallocated for the element stencils, local-to-global mapping set.
+  /// A block-size-3 AIJ matrix preallocated for the element stencils, local-to-global mapping
+  /// set, with the six rigid-body modes as near-nullspace (for algebraic multigrid).
   PetscErrorCode create_matrix(Mat* A) const;
+  /// Reference coordinates of the owned points (block size 3), e.g. for rigid-body modes.
+  PetscErrorCode create_coordinates(Vec* x) const;
   /// Global → local (owned + ghost) values.
   PetscErrorCode to_local(Vec global, std::vector<double>& local) const;
   /// Adds local values into a global vector (ADD_VALUES; the global vector is not zeroed).

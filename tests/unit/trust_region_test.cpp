@@ -167,3 +167,22 @@ TEST(LocalTrustRegion, ConvergesToTheMinimiserOfPetscsTrustRegionWithMonotoneEne
       EXPECT_LE(tr.history[i], tr.history[i - 1]) << example << ": energy rose at iteration " << i;
   }
 }
+
+TEST(NewtonBaselines, DampedNewtonAndLinearizedEquationBehaveAsSpecified) {
+  // Damped Newton with α = 0.3 on the (nearly linear) plate: the gradient shrinks by about
+  // 1 − α per iteration until the tolerance is met.
+  const TaoRun damped = run("plate.yaml", "dampednewton", PETSC_COMM_SELF);
+  EXPECT_TRUE(damped.converged);
+  EXPECT_GE(damped.history.size(), 20u);
+  // The linearized equation: exactly one Newton step, which lands close to the minimiser of the
+  // nearly linear plate but is not accepted as converged at the default tolerance.
+  const TaoRun linearized = run("plate.yaml", "linearized", PETSC_COMM_SELF);
+  EXPECT_EQ(linearized.history.size(), 2u);  // the initial point and one step
+  EXPECT_FALSE(linearized.converged);
+  double diff = 0, norm = 0;
+  for (size_t i = 0; i < damped.u.size(); ++i) {
+    diff = std::max(diff, std::abs(linearized.u[i] - damped.u[i]));
+    norm = std::max(norm, std::abs(damped.u[i]));
+  }
+  EXPECT_LT(diff, 1e-3 * norm);
+}
