@@ -98,8 +98,6 @@ class PenaltyTerm final : public EnergyTerm {
               std::function<Eigen::Vector3d(double)> motion);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
-  /// Largest |u(ξ) − d(t)| over the constrained components at this rank's samples.
-  double max_violation(const std::vector<double>& u) const;
 
  private:
   std::vector<PenaltySample> samples_;

@@ -53,17 +53,4 @@ PetscErrorCode PenaltyTerm::add(const std::vector<double>& u, CompensatedSum& en
   PetscFunctionReturn(0);
 }
 
-double PenaltyTerm::max_violation(const std::vector<double>& u) const {
-  const Eigen::Vector3d d = motion_(time_);
-  double worst = 0.0;
-  for (const PenaltySample& s : samples_)
-    for (int c = 0; c < 3; ++c) {
-      if (!components_[c]) continue;
-      double r = -d[c];
-      for (size_t i = 0; i < s.nodes.size(); ++i) r += s.value[i] * u[3 * s.nodes[i] + c];
-      worst = std::max(worst, std::abs(r));
-    }
-  return worst;
-}
-
 }  // namespace mlshell

@@ -122,6 +122,8 @@ PetscErrorCode record_energy(Tao tao, void* ctx) {
 struct TaoRun {
   std::vector<double> u, history;
   bool converged = false;
+  int iterations = 0;
+  TrustRegionStatistics stats;  // for type "tr"
 };
 
 TaoRun run(const char* example, const char* type, MPI_Comm comm) {
@@ -141,6 +143,8 @@ TaoRun run(const char* example, const char* type, MPI_Comm comm) {
     SolveReport report;
     solver.solve(u, report);
     out.converged = report.converged;
+    out.iterations = report.iterations;
+    if (std::string(type) == "tr") trust_region_statistics(solver.tao(), &out.stats);
     layout.gather_natural(u, out.u);
     VecDestroy(&u);
   }
@@ -163,6 +167,12 @@ TEST(LocalTrustRegion, ConvergesToTheMinimiserOfPetscsTrustRegionWithMonotoneEne
     }
     EXPECT_LT(diff, 1e-6 * norm) << example;
     ASSERT_GT(tr.history.size(), 2u) << example;
+    // Work counts: one QP and one trial evaluation per iteration; Hessians only at the start and
+    // after accepted steps.
+    EXPECT_EQ(tr.stats.qp_solves, tr.iterations) << example;
+    EXPECT_EQ(tr.stats.objectives, tr.iterations) << example;
+    EXPECT_EQ(tr.stats.hessians, tr.stats.accepted + 1) << example;
+    EXPECT_LE(tr.stats.accepted, tr.iterations) << example;
     for (size_t i = 1; i < tr.history.size(); ++i)
       EXPECT_LE(tr.history[i], tr.history[i - 1]) << example << ": energy rose at iteration " << i;
   }
