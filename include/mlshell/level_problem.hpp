@@ -10,10 +10,11 @@
 #include <vector>
 
 #include "mlshell/energy_term.hpp"
+#include "mlshell/objective.hpp"
 
 namespace mlshell {
 
-class LevelProblem {
+class LevelProblem final : public Objective {
  public:
   explicit LevelProblem(const ParallelLayout& layout);
   void add_term(std::unique_ptr<EnergyTerm> term);
@@ -30,9 +31,9 @@ class LevelProblem {
   /// f(u) and, if g is not null, ∇f(u). A non-finite energy (a trial point outside the
   /// material's domain) is reported as +inf so that trust-region and line-search methods reject
   /// the step instead of propagating NaN.
-  PetscErrorCode objective(Vec u, PetscReal* f, Vec g);
+  PetscErrorCode objective(Vec u, PetscReal* f, Vec g) override;
   /// ∇²f(u), assembled into H (created by create_matrix).
-  PetscErrorCode hessian(Vec u, Mat H);
+  PetscErrorCode hessian(Vec u, Mat H) override;
   PetscErrorCode create_matrix(Mat* H) const { return layout_.create_matrix(H); }
   /// Global energy of each term at u, in the order of terms().
   PetscErrorCode term_energies(Vec u, std::vector<double>& energies);

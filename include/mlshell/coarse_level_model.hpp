@@ -1,0 +1,29 @@
+// The coarse-level model of RMTR (paper eq. 4.3–4.4):
+//   h(x) = f(x) + ⟨δg, x − x₀⟩,   δg = R ∇h_fine(x_fine) − ∇f(x₀),
+// where f is the level's own objective and x₀ the projected fine iterate. It makes the first
+// coarse gradient the restricted fine gradient, ∇h(x₀) = R ∇h_fine (first-order consistency,
+// eq. 4.5), so the coarse minimisation starts downhill for the fine problem. ∇²h = ∇²f.
+#pragma once
+
+#include "mlshell/objective.hpp"
+
+namespace mlshell {
+
+class CoarseLevelModel final : public Objective {
+ public:
+  explicit CoarseLevelModel(Objective& level);
+  ~CoarseLevelModel() override;
+  CoarseLevelModel(const CoarseLevelModel&) = delete;
+  CoarseLevelModel& operator=(const CoarseLevelModel&) = delete;
+
+  /// Starts a coarse cycle at x₀ with the restricted fine gradient R ∇h_fine.
+  PetscErrorCode initialize(Vec x0, Vec restricted_gradient);
+  PetscErrorCode objective(Vec x, PetscReal* h, Vec g) override;
+  PetscErrorCode hessian(Vec x, Mat H) override { return level_.hessian(x, H); }
+
+ private:
+  Objective& level_;
+  Vec x0_ = nullptr, delta_g_ = nullptr, work_ = nullptr;
+};
+
+}  // namespace mlshell

@@ -1,0 +1,39 @@
+// RMTR's coarse-level model, eq. (4.3)–(4.4) (see coarse_level_model.hpp).
+#include "mlshell/coarse_level_model.hpp"
+
+namespace mlshell {
+
+CoarseLevelModel::CoarseLevelModel(Objective& level) : level_(level) {}
+
+CoarseLevelModel::~CoarseLevelModel() {
+  VecDestroy(&x0_);
+  VecDestroy(&delta_g_);
+  VecDestroy(&work_);
+}
+
+PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient) {
+  PetscFunctionBeginUser;
+  if (!x0_) {
+    PetscCall(VecDuplicate(x0, &x0_));
+    PetscCall(VecDuplicate(x0, &delta_g_));
+    PetscCall(VecDuplicate(x0, &work_));
+  }
+  PetscCall(VecCopy(x0, x0_));
+  PetscReal f0;
+  PetscCall(level_.objective(x0_, &f0, delta_g_));          // ∇f(x₀)
+  PetscCall(VecAYPX(delta_g_, -1.0, restricted_gradient));  // δg = R∇h_fine − ∇f(x₀)
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CoarseLevelModel::objective(Vec x, PetscReal* h, Vec g) {
+  PetscFunctionBeginUser;
+  PetscCall(level_.objective(x, h, g));
+  PetscCall(VecWAXPY(work_, -1.0, x0_, x));  // x − x₀
+  PetscReal coupling;
+  PetscCall(VecDot(delta_g_, work_, &coupling));
+  *h += coupling;
+  if (g) PetscCall(VecAXPY(g, 1.0, delta_g_));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell
