@@ -27,7 +27,7 @@ class Material {
 /// (u+1)^α − 1 is evaluated as expm1(α log1p(u)): the exponents reach −12 802.
 ///
 /// Domain of validity: a fitted φ_j need not be monotone. Table 1's φ_3 (denim weft) has
-/// φ_3' < 0 beyond u ≈ 0.15 (|Ẽ22| ≈ 0.39) and φ_3 → −∞, because its largest exponent
+/// φ_3' < 0 beyond u ≈ 0.10 (|Ẽ22| ≈ 0.32) and φ_3 → −∞, because its largest exponent
 /// (α_34 = 30.07) has a negative coefficient. The energy would be unbounded below and a solver
 /// can run away into that region. The model is therefore defined only where every φ_j' > 0:
 /// u_j ≤ u_j^max, the first zero of φ_j', and where ψ ≥ 0 (the linear φ_2 = Ẽ11 Ẽ22 term lets
