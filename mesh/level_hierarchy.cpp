@@ -54,6 +54,7 @@ LevelHierarchy::LevelHierarchy(MPI_Comm comm, const SubdivisionHierarchy& sub, i
     PetscCallAbort(
         comm, create_block_transfer(sub.subdivision(coarsest + l), layout(l + 1), layout(l), &t.S));
     PetscCallAbort(comm, MatTranspose(t.S, MAT_INITIAL_MATRIX, &t.R));
+    PetscCallAbort(comm, MatCreateVecs(t.S, nullptr, &t.fine_work));
     PetscCallAbort(comm, create_block_transfer(sub.reverse_subdivision(coarsest + l), layout(l),
                                                layout(l + 1), &t.Q));
   }
@@ -66,6 +67,7 @@ LevelHierarchy::~LevelHierarchy() {
     MatDestroy(&t.Q);
     MatDestroy(&t.StS);
     KSPDestroy(&t.normal);
+    VecDestroy(&t.fine_work);
   }
 }
 
@@ -94,19 +96,12 @@ PetscErrorCode LevelHierarchy::least_squares_projection(int l, Vec fine, Vec coa
 
 PetscErrorCode LevelHierarchy::composite_norm(int l, Vec x, PetscReal* norm) const {
   PetscFunctionBeginUser;
-  if (l == finest()) {
-    PetscCall(VecNorm(x, NORM_2, norm));
-    PetscFunctionReturn(0);
-  }
-  Vec current = x, next = nullptr;
+  Vec current = x;  // on the finest level: ‖x‖ itself
   for (int k = l; k < finest(); ++k) {
-    PetscCall(MatCreateVecs(transfers_[k].S, nullptr, &next));
-    PetscCall(MatMult(transfers_[k].S, current, next));
-    if (current != x) PetscCall(VecDestroy(&current));
-    current = next;
+    PetscCall(MatMult(transfers_[k].S, current, transfers_[k].fine_work));
+    current = transfers_[k].fine_work;
   }
   PetscCall(VecNorm(current, NORM_2, norm));
-  PetscCall(VecDestroy(&current));
   PetscFunctionReturn(0);
 }
 

@@ -60,6 +60,7 @@ class LevelHierarchy {
     Mat S = nullptr, R = nullptr, Q = nullptr;
     Mat StS = nullptr;  // for P, on first use
     KSP normal = nullptr;
+    Vec fine_work = nullptr;  // S x, for the composite norm
   };
   std::vector<Level> levels_;
   mutable std::vector<Transfer> transfers_;

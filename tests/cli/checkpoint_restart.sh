@@ -117,22 +117,28 @@ print(f"  energy.total A {a['energy']['total']!r}, B {b['energy']['total']!r}")
 EOF
 
 # --- a damaged checkpoint --------------------------------------------------------------------------
+# expect_refused NAME DESCRIPTION: NAME.yaml restarts from NAME.bin, which must be refused with
+# exit 2, a message naming NAME.bin, no crash and no summary.json.
+expect_refused() {
+  local name=$1 what=$2 rc=0
+  echo "check: $what is refused (exit 2) with a message naming it"
+  timeout 300 "$MLSHELL" "$name.yaml" -mlshell_quiet >"logs/$name.stdout" 2>"logs/$name.stderr" || rc=$?
+  [[ $rc -eq 2 ]] || die "$what: exit status $rc, expected 2: $(cat "logs/$name.stderr")"
+  grep -qF "$name.bin" "logs/$name.stderr" ||
+    die "$what: the message does not name $name.bin: $(cat "logs/$name.stderr")"
+  [[ ! -e out/$name/summary.json ]] || die "$what: a summary.json was written"
+  echo "  exit status $rc: $(head -n 1 "logs/$name.stderr")"
+}
+
 # A damaged file is an input error; it must be refused (not restarted from) with a message that
 # names the file: it is invalid input (exit 2), on any number of ranks.
 cp "$CKPT" truncated.bin
 size=$(stat -c %s truncated.bin)
 truncate -s $((size / 2)) truncated.bin
 scene truncated.yaml out/truncated 1 "initial_state: {checkpoint: truncated.bin}"
-echo "check: a truncated checkpoint is refused (exit 2) with a message naming it"
-rc=0
-timeout 300 "$MLSHELL" truncated.yaml -mlshell_quiet >logs/truncated.stdout 2>logs/truncated.stderr || rc=$?
-[[ $rc -eq 2 ]] || die "truncated checkpoint: exit status $rc, expected 2: $(cat logs/truncated.stderr)"
-grep -qF "truncated.bin" logs/truncated.stderr ||
-  die "truncated checkpoint: the message does not name truncated.bin: $(cat logs/truncated.stderr)"
+expect_refused truncated "a truncated checkpoint"
 grep -qE "Segmentation|core dumped|PETSC ERROR" logs/truncated.stdout logs/truncated.stderr &&
   die "truncated checkpoint: crash: $(cat logs/truncated.stderr)"
-[[ ! -e out/truncated/summary.json ]] || die "truncated checkpoint: a summary.json was written"
-echo "  exit status $rc: $(head -n 1 logs/truncated.stderr)"
 
 # One flipped byte in the body: only the checksum can tell.
 cp "$CKPT" flipped.bin
@@ -144,14 +150,7 @@ with open("flipped.bin", "r+b") as f:
     f.write(bytes([byte[0] ^ 0x01]))
 EOF
 scene flipped.yaml out/flipped 1 "initial_state: {checkpoint: flipped.bin}"
-echo "check: a checkpoint with one flipped byte is refused (exit 2) with a message naming it"
-rc=0
-timeout 300 "$MLSHELL" flipped.yaml -mlshell_quiet >logs/flipped.stdout 2>logs/flipped.stderr || rc=$?
-[[ $rc -eq 2 ]] || die "flipped checkpoint: exit status $rc, expected 2: $(cat logs/flipped.stderr)"
-grep -qF "flipped.bin" logs/flipped.stderr ||
-  die "flipped checkpoint: the message does not name flipped.bin: $(cat logs/flipped.stderr)"
-[[ ! -e out/flipped/summary.json ]] || die "flipped checkpoint: a summary.json was written"
-echo "  exit status $rc: $(head -n 1 logs/flipped.stderr)"
+expect_refused flipped "a checkpoint with one flipped byte"
 
 echo "check: a truncated checkpoint on 2 ranks ends (no hang) with a non-zero status"
 rc=0
