@@ -11,7 +11,7 @@ CoarseLevelModel::~CoarseLevelModel() {
   VecDestroy(&work_);
 }
 
-PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient) {
+PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, PetscReal* h0) {
   PetscFunctionBeginUser;
   if (!x0_) {
     PetscCall(VecDuplicate(x0, &x0_));
@@ -22,6 +22,7 @@ PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient) {
   PetscReal f0;
   PetscCall(level_.objective(x0_, &f0, delta_g_));          // ∇f(x₀)
   PetscCall(VecAYPX(delta_g_, -1.0, restricted_gradient));  // δg = R∇h_fine − ∇f(x₀)
+  if (h0) *h0 = f0;
   PetscFunctionReturn(0);
 }
 

@@ -22,30 +22,71 @@ PetscErrorCode quadratic_model(Mat H, Vec g, Vec s, PetscReal* m) {
 // ---------------------------------------------------------------------------------------------
 // Dogleg
 
-DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix) {
-  PetscCallAbort(comm, KSPCreate(comm, &ksp_));
-  PetscCallAbort(comm, KSPSetOptionsPrefix(ksp_, prefix.c_str()));
-  PetscCallAbort(comm, KSPSetType(ksp_, KSPPREONLY));
+namespace {
+
+/// A direct solve (KSPPREONLY + Cholesky, MUMPS) configurable under `prefix`.
+KSP create_direct_solver(MPI_Comm comm, const std::string& prefix) {
+  KSP ksp;
   PC pc;
-  PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
+  PetscCallAbort(comm, KSPCreate(comm, &ksp));
+  PetscCallAbort(comm, KSPSetOptionsPrefix(ksp, prefix.c_str()));
+  PetscCallAbort(comm, KSPSetType(ksp, KSPPREONLY));
+  PetscCallAbort(comm, KSPGetPC(ksp, &pc));
   PetscCallAbort(comm, PCSetType(pc, PCCHOLESKY));
   PetscCallAbort(comm, PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+  PetscCallAbort(comm, KSPSetFromOptions(ksp));
+  return ksp;
 }
 
-DoglegQp::~DoglegQp() { KSPDestroy(&ksp_); }
+}  // namespace
+
+DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix)
+    : ksp_(create_direct_solver(comm, prefix)), ksp_shifted_(create_direct_solver(comm, prefix)) {}
+
+DoglegQp::~DoglegQp() {
+  KSPDestroy(&ksp_);
+  KSPDestroy(&ksp_shifted_);
+  MatDestroy(&shifted_);
+}
 
 PetscErrorCode DoglegQp::set_operator(Mat H) {
   PetscFunctionBeginUser;
+  if (H != H_) PetscCall(MatDestroy(&shifted_));
   H_ = H;
   PetscCall(KSPSetOperators(ksp_, H, H));
   factored_ = factor_failed_ = indefinite_ = false;
+  shift_ = 0.0;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode DoglegQp::factor() {
   PetscFunctionBeginUser;
   factored_ = true;
+  active_ = ksp_;
+  PetscCall(factor_operator());
+  if (factor_failed_ || indefinite_) {
+    // The shifted matrices share one nonzero pattern: one symbolic factorisation for all λ.
+    PetscReal norm;
+    PetscCall(MatNorm(H_, NORM_INFINITY, &norm));
+    if (!shifted_) {
+      PetscCall(MatDuplicate(H_, MAT_DO_NOT_COPY_VALUES, &shifted_));
+      PetscCall(MatSetOption(shifted_, MAT_SYMMETRIC, PETSC_TRUE));  // for Cholesky
+    }
+    PetscReal lambda = 1e-6 * norm;
+    for (int k = 0; k < 12 && (factor_failed_ || indefinite_) && norm > 0; ++k, lambda *= 10) {
+      PetscCall(MatCopy(H_, shifted_, SAME_NONZERO_PATTERN));
+      PetscCall(MatShift(shifted_, lambda));
+      active_ = ksp_shifted_;
+      PetscCall(KSPSetOperators(active_, shifted_, shifted_));
+      PetscCall(factor_operator());
+      shift_ = lambda;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DoglegQp::factor_operator() {
+  PetscFunctionBeginUser;
   PC pc;
   PCType type;
   PetscCall(KSPGetPC(ksp_, &pc));
@@ -60,7 +101,7 @@ PetscErrorCode DoglegQp::factor() {
     // MUMPS reports the inertia of its LDLᵀ factor correctly in parallel only with ICNTL(13) = 1.
     if (package && std::string(package) == MATSOLVERMUMPS) PetscCall(MatMumpsSetIcntl(F, 13, 1));
   }
-  PetscCall(KSPSetUp(ksp_));
+  PetscCall(KSPSetUp(active_));
   PCFailedReason failed;
   PetscCall(PCGetFailedReason(pc, &failed));
   factor_failed_ = failed != PC_NOERROR;
@@ -104,20 +145,21 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
   if (!done) {
     // Newton point p_N = −H⁻¹g; the factorisation is computed once per operator.
     if (!factored_) PetscCall(factor());
-    bool newton_ok = !factor_failed_ && !indefinite_;
+    bool newton_ok = !factor_failed_ && !indefinite_;  // of H, or of H + λI
     if (newton_ok) {
-      PetscCall(KSPSolve(ksp_, g, pN));
+      PetscCall(KSPSolve(active_, g, pN));
       PetscCall(VecScale(pN, -1.0));
       ++result.iterations;
       KSPConvergedReason reason;
-      PetscCall(KSPGetConvergedReason(ksp_, &reason));
+      PetscCall(KSPGetConvergedReason(active_, &reason));
       PetscReal gp, pHp, pnorm;
       PetscCall(VecDot(g, pN, &gp));
       PetscCall(quadratic_model(H_, g, pN, &pHp));  // m(p_N) = gᵀp + ½ pᵀHp
       pHp = 2.0 * (pHp - gp);
       PetscCall(VecNorm(pN, NORM_2, &pnorm));
-      // Indefinite or singular H: no usable Newton point.
-      newton_ok = reason >= 0 && std::isfinite(pnorm) && gp < 0.0 && pHp > 0.0;
+      // Singular H, or negative curvature along p_N: no usable Newton point. (With a shift,
+      // pᵀHp may be negative; the comparison with the Cauchy point below guards the step.)
+      newton_ok = reason >= 0 && std::isfinite(pnorm) && gp < 0.0 && (shift_ > 0 || pHp > 0.0);
       if (reason < 0) factor_failed_ = true;
     }
     if (!newton_ok) {
@@ -128,7 +170,7 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
       PetscCall(VecNorm(pN, NORM_2, &pnorm));
       if (pnorm <= radius) {
         PetscCall(VecCopy(pN, s));
-        result.kind = "newton";
+        result.kind = shift_ > 0 ? "shifted" : "newton";
       } else {
         // ‖p_C + t (p_N − p_C)‖ = Δ for t ∈ [0, 1].
         Vec d = pN;
@@ -141,7 +183,16 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
         c -= radius * radius;
         const PetscReal t = (-b + std::sqrt(std::max(0.0, b * b - 4.0 * a * c))) / (2.0 * a);
         PetscCall(VecWAXPY(s, t, d, pC));
-        result.kind = "dogleg";
+        result.kind = shift_ > 0 ? "shifted" : "dogleg";
+      }
+      if (shift_ > 0) {  // the modified Newton point must beat the Cauchy point in the true model
+        PetscReal ms, mc;
+        PetscCall(quadratic_model(H_, g, s, &ms));
+        PetscCall(quadratic_model(H_, g, pC, &mc));
+        if (!(ms <= mc)) {
+          PetscCall(VecCopy(pC, s));
+          result.kind = "cauchy";
+        }
       }
     }
   }

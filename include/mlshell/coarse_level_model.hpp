@@ -16,8 +16,9 @@ class CoarseLevelModel final : public Objective {
   CoarseLevelModel(const CoarseLevelModel&) = delete;
   CoarseLevelModel& operator=(const CoarseLevelModel&) = delete;
 
-  /// Starts a coarse cycle at x₀ with the restricted fine gradient R ∇h_fine.
-  PetscErrorCode initialize(Vec x0, Vec restricted_gradient);
+  /// Starts a coarse cycle at x₀ with the restricted fine gradient R ∇h_fine; returns
+  /// f(x₀) = h(x₀) in *f0 if not null.
+  PetscErrorCode initialize(Vec x0, Vec restricted_gradient, PetscReal* f0 = nullptr);
   PetscErrorCode objective(Vec x, PetscReal* h, Vec g) override;
   PetscErrorCode hessian(Vec x, Mat H) override { return level_.hessian(x, H); }
 

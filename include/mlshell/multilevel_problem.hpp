@@ -1,6 +1,8 @@
 // A scene's energy re-discretised on every level of a hierarchy (paper §4.2, §6, Fig. 7): each
-// level assembles all of the scene's effects on its own discretization, with its own penalty
-// β_l = h_l^-σ and its own boundary conditions, and all levels describe the same moment in time.
+// level assembles all of the scene's effects on its own discretization, with its own boundary
+// selections, and all levels describe the same moment in time. They discretise one functional:
+// the penalty β = h^-σ takes the finest level's h on every level (see build_level_problem).
+// It is what RMTR works on (MultilevelObjective).
 #pragma once
 
 #include <memory>
@@ -8,21 +10,40 @@
 
 #include "mlshell/level_hierarchy.hpp"
 #include "mlshell/level_problem.hpp"
+#include "mlshell/multilevel_objective.hpp"
 #include "mlshell/scene.hpp"
 #include "mlshell/selection.hpp"
 
 namespace mlshell {
 
-class MultilevelProblem {
+class MultilevelProblem final : public MultilevelObjective {
  public:
   MultilevelProblem(const Scene& scene, const LevelHierarchy& levels, const CageFrame& frame);
   ~MultilevelProblem();
   MultilevelProblem(const MultilevelProblem&) = delete;
   MultilevelProblem& operator=(const MultilevelProblem&) = delete;
 
-  int num_levels() const { return static_cast<int>(problems_.size()); }
+  int num_levels() const override { return static_cast<int>(problems_.size()); }
   LevelProblem& level(int l) { return *problems_[l]; }
   const LevelHierarchy& hierarchy() const { return levels_; }
+  // MultilevelObjective
+  Objective& level_objective(int l) override { return *problems_[l]; }
+  PetscErrorCode create_vector(int l, Vec* v) const override {
+    return levels_.layout(l).create_vector(v);
+  }
+  PetscErrorCode create_hessian(int l, Mat* H) const override {
+    return problems_[l]->create_matrix(H);
+  }
+  Mat prolongation(int l) const override { return levels_.prolongation(l); }
+  Mat restriction(int l) const override { return levels_.restriction(l); }
+  Mat projection(int l) const override { return levels_.projection(l); }
+  PetscErrorCode least_squares_projection(int l, Vec fine, Vec coarse) const override {
+    return levels_.least_squares_projection(l, fine, coarse);
+  }
+  PetscErrorCode composite_norm(int l, Vec x, PetscReal* norm) const override {
+    return levels_.composite_norm(l, x, norm);
+  }
+
   /// Displacement and velocity of level l after the last synchronize().
   Vec state(int l) const { return u_[l]; }
   Vec velocity(int l) const { return v_[l]; }

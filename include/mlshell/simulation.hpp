@@ -1,5 +1,6 @@
-// A scene run end to end: cage → subdivision level → distributed problem → time stepping with
-// a TAO solver → result files (HDF5/XDMF, OBJ, CSV, summary.json, checkpoints).
+// A scene run end to end: cage → subdivision levels → distributed problems on every level
+// RMTR uses → time stepping with a TAO solver (default RMTR on all levels 0..refine) → result
+// files (HDF5/XDMF, OBJ, CSV, summary.json, checkpoints).
 //
 // Options (besides PETSc's own, e.g. -tao_monitor, -log_view):
 //   -mlshell_evaluate            print every enabled effect's energy and the gradient norm at
@@ -21,6 +22,8 @@
 
 #include "mlshell/discretization.hpp"
 #include "mlshell/effect_builder.hpp"
+#include "mlshell/level_hierarchy.hpp"
+#include "mlshell/multilevel_problem.hpp"
 #include "mlshell/parallel_layout.hpp"
 #include "mlshell/scene.hpp"
 #include "mlshell/step_solver.hpp"
@@ -52,6 +55,8 @@ class Simulation {
   Vec displacement() const { return u_; }
   /// Solver iterations summed over the steps run so far.
   long iterations() const { return total_iterations_; }
+  /// RMTR work summed over the steps run so far (empty levels for other solvers).
+  const RmtrStatistics& rmtr_totals() const { return rmtr_totals_; }
   /// Natural-order displacement on rank 0.
   PetscErrorCode natural_displacement(std::vector<double>& u) const;
 
@@ -69,9 +74,11 @@ class Simulation {
   SimulationOptions options_;
   CageFrame frame_;
   std::unique_ptr<SubdivisionHierarchy> hierarchy_;
-  std::unique_ptr<Discretization> disc_;
-  std::unique_ptr<ParallelLayout> layout_;
-  std::unique_ptr<LevelProblem> problem_;
+  std::unique_ptr<LevelHierarchy> levels_;         // all levels for RMTR, else the finest alone
+  std::unique_ptr<MultilevelProblem> multilevel_;  // the scene on each of them
+  const Discretization* disc_ = nullptr;           // the finest level's
+  const ParallelLayout* layout_ = nullptr;
+  LevelProblem* problem_ = nullptr;
   std::unique_ptr<StepSolver> solver_;
   std::unique_ptr<Output> output_;
   Vec u_ = nullptr, v_ = nullptr, u_prev_ = nullptr;
@@ -79,6 +86,7 @@ class Simulation {
   std::vector<SurfacePoint> probes_;
   double wall_start_ = 0.0;
   long total_iterations_ = 0;
+  RmtrStatistics rmtr_totals_;
   bool all_converged_ = true;
   int steps_done_ = 0;
 };

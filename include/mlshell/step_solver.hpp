@@ -1,12 +1,11 @@
 // Solves one step's minimisation problem with a PETSc TAO solver (options prefix `-tao_`).
 //
 // Defaults (all overridable from the command line or an options file, which win):
-//   -tao_type bntr -tao_gatol 1e-7 (paper eq. 7.1) -tao_gttol 1e-10 -tao_grtol 0 -tao_max_it 1000
-// and, for the KSP of whichever Newton-type TAO solver is chosen (prefix tao_bnk_ for
+//   -tao_type rmtr -tao_gatol 1e-7 (paper eq. 7.1) -tao_gttol 1e-10 -tao_grtol 0 -tao_max_it 1000
+// i.e. the recursive multilevel trust region on every level it is given (one level: Local_TR).
+// For the KSP of whichever Newton-type PETSc solver is chosen instead (prefix tao_bnk_ for
 // bntr/bnls/bqnkls..., tao_nls_ for nls, ...): ksp_type stcg, pc_type lu,
 // pc_factor_mat_solver_type mumps.
-// i.e. a Newton trust-region method whose subproblem is solved with a sparse direct
-// factorisation (the recursive multilevel trust region arrives with its own TAO type).
 #pragma once
 
 #include <petsctao.h>
@@ -14,6 +13,7 @@
 #include <string>
 
 #include "mlshell/level_problem.hpp"
+#include "mlshell/trust_region.hpp"
 
 namespace mlshell {
 
@@ -24,11 +24,16 @@ struct SolveReport {
   int linear_iterations = 0;
   double energy = 0.0;
   double gradient_norm = 0.0;
+  RmtrStatistics rmtr;  ///< for -tao_type rmtr
 };
+
+/// The TAO type a StepSolver will use: -tao_type if given, else the default "rmtr".
+std::string step_solver_type();
 
 class StepSolver {
  public:
-  explicit StepSolver(LevelProblem& problem);
+  /// Minimises `problem`; `levels` (finest = problem) are given to RMTR if that is the type.
+  explicit StepSolver(LevelProblem& problem, MultilevelObjective* levels = nullptr);
   ~StepSolver();
   StepSolver(const StepSolver&) = delete;
   StepSolver& operator=(const StepSolver&) = delete;

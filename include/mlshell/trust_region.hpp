@@ -1,9 +1,14 @@
-// mlshell's own TAO solvers. After registration, `-tao_type tr` selects Local_TR (paper
-// Alg. 4.1; solvers/tao_trust_region.cpp lists its options), and `-tao_type dampednewton` and
-// `-tao_type linearized` the baselines of §7.4.1 (solvers/tao_newton_baselines.cpp).
+// mlshell's own TAO solvers. After registration, `-tao_type rmtr` selects the recursive
+// multilevel trust region (paper Alg. 4.2/4.3; solvers/tao_rmtr.cpp lists its options),
+// `-tao_type tr` Local_TR (Alg. 4.1; solvers/tao_trust_region.cpp), and `-tao_type dampednewton`
+// and `-tao_type linearized` the baselines of §7.4.1 (solvers/tao_newton_baselines.cpp).
 #pragma once
 
 #include <petsctao.h>
+
+#include <vector>
+
+#include "mlshell/multilevel_objective.hpp"
 
 namespace mlshell {
 
@@ -15,8 +20,37 @@ struct TrustRegionStatistics {
   long hessians = 0;    ///< Hessian assemblies
 };
 
-/// Registers the TAO type "tr" (idempotent).
+/// Work of one level of the last RMTR solve (level 0 the coarsest used).
+struct RmtrLevelStatistics {
+  PetscInt dofs = 0;
+  long successful = 0;  ///< π^l of eq. (7.2): accepted steps that survived to the finest level
+  long assemblies = 0;  ///< gradient-and-Hessian assemblies (Q^l of eq. 7.3)
+  long qp_solves = 0;
+  long objectives = 0;       ///< trial-point evaluations
+  long coarse_accepted = 0;  ///< prolongated coarse corrections accepted on this level
+  long coarse_rejected = 0;  ///< ... rejected by the multilevel ratio (4.11)
+};
+
+/// Statistics of the last solve of a Tao of type "rmtr".
+struct RmtrStatistics {
+  std::vector<RmtrLevelStatistics> levels;
+  long cycles = 0;
+  /// W of eq. (7.3): Σ_l 2^{−2(L−l)} Q^l, for assemblies and for QP solves.
+  double assembly_work_units = 0.0, qp_work_units = 0.0;
+  /// Sums the counts of another solve on the same levels (for totals over time steps).
+  RmtrStatistics& operator+=(const RmtrStatistics& other);
+};
+
+/// Registers the TAO types "tr" and "rmtr" (idempotent).
 PetscErrorCode register_trust_region_tao_types();
+
+/// Gives a Tao of type "rmtr" the levels to work on; the finest must be the problem set on the
+/// Tao. Without it, RMTR runs on the Tao's problem alone (one level: Local_TR with Dogleg). The
+/// object must outlive the solves.
+PetscErrorCode rmtr_set_levels(Tao tao, MultilevelObjective* levels);
+
+/// Statistics of the last solve of a Tao of type "rmtr".
+PetscErrorCode rmtr_statistics(Tao tao, RmtrStatistics* stats);
 
 /// Registers the TAO types "dampednewton" and "linearized" (idempotent).
 PetscErrorCode register_newton_baseline_tao_types();

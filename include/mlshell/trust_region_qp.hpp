@@ -5,11 +5,15 @@
 //  * Dogleg (Powell; Nocedal & Wright, Numerical Optimization, §4.1): the path from the Cauchy
 //    point p_C = −(gᵀg / gᵀHg) g to the Newton point p_N = −H⁻¹g, cut at the boundary. The
 //    Newton point comes from a sparse direct factorisation through PETSc (options prefix
-//    `<prefix>`, default Cholesky (LDLᵀ) by MUMPS). If H is indefinite or singular — negative
-//    eigenvalues in the inertia of the LDLᵀ factor, negative curvature along g or p_N, a
-//    failed factorisation, or a Newton point that is not a descent direction — the step falls
-//    back to the Cauchy point (steepest descent to the boundary when gᵀHg ≤ 0), so a step is
-//    never NaN.
+//    `<prefix>`, default Cholesky (LDLᵀ) by MUMPS). If H is indefinite or singular (negative
+//    eigenvalues in the inertia of the LDLᵀ factor, or a failed factorisation), p_N is taken
+//    from H + λI instead, with λ = 10⁻⁶‖H‖∞ raised tenfold until the factor is positive
+//    definite (at most 12 factorisations; the modified Newton point of Nocedal & Wright §3.4).
+//    Cloth Hessians are indefinite wherever the fabric is compressed, and the plain Cauchy
+//    fallback then degenerates into steepest descent. The step is never worse than the Cauchy
+//    point in the true model: if the path gives less decrease, or p_N is not a descent
+//    direction, the Cauchy point is taken (steepest descent to the boundary when gᵀHg ≤ 0), so
+//    a step is never NaN.
 //  * Steihaug–Toint CG: PETSc's KSPSTCG with the radius, a maximum iteration count (10 as a
 //    smoother) and the model value from KSPCGGetObjFcn; it stops at the boundary on negative
 //    curvature.
@@ -25,7 +29,8 @@ struct QpResult {
   PetscReal model_decrease = 0.0;  ///< m(0) − m(s) (≥ 0 for an acceptable step)
   PetscReal step_norm = 0.0;
   int iterations = 0;     ///< CG iterations (STCG) or factorisations (Dogleg)
-  const char* kind = "";  ///< "newton", "dogleg", "cauchy", "boundary", "interior"
+  const char* kind = "";  ///< "newton", "dogleg", "shifted" (Newton/dogleg with H + λI),
+                          ///< "cauchy", "boundary", "interior"
 };
 
 class TrustRegionQp {
@@ -45,8 +50,10 @@ class DoglegQp final : public TrustRegionQp {
 
  private:
   PetscErrorCode factor();
-  KSP ksp_ = nullptr;
-  Mat H_ = nullptr;
+  PetscErrorCode factor_operator();
+  KSP ksp_ = nullptr, ksp_shifted_ = nullptr, active_ = nullptr;  // H, H + λI, the one in use
+  Mat H_ = nullptr, shifted_ = nullptr;
+  PetscReal shift_ = 0.0;  // λ of the factorised H + λI (0: H itself)
   bool factored_ = false, factor_failed_ = false, indefinite_ = false;
 };
 

@@ -124,11 +124,12 @@ std::unique_ptr<EnergyTerm> penalty_term(const std::string& name, const Discreti
 
 std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Discretization& disc,
                                                   const ParallelLayout& layout,
-                                                  const CageFrame& frame) {
+                                                  const CageFrame& frame,
+                                                  double penalty_mesh_size) {
   auto problem = std::make_unique<LevelProblem>(layout);
   problem->add_term(std::make_unique<ShellElasticTerm>(disc, layout, scene.material));
   const double ramp_time = scene.time.dt * scene.time.steps;
-  const double h = disc.mesh_size();
+  const double h = penalty_mesh_size > 0.0 ? penalty_mesh_size : disc.mesh_size();
   const int nlocal = layout.num_local_points();
   for (size_t index = 0; index < scene.effects.size(); ++index) {
     const Effect& effect = scene.effects[index];

@@ -10,8 +10,9 @@ MultilevelProblem::MultilevelProblem(const Scene& scene, const LevelHierarchy& l
                                      const CageFrame& frame)
     : levels_(levels), dt_(scene.time.dt) {
   for (int l = 0; l < levels.num_levels(); ++l) {
-    problems_.push_back(
-        build_level_problem(scene, levels.discretization(l), levels.layout(l), frame));
+    problems_.push_back(build_level_problem(scene, levels.discretization(l), levels.layout(l),
+                                            frame,
+                                            levels.discretization(levels.finest()).mesh_size()));
     Vec u, v;
     PetscCallAbort(levels.layout(l).comm(), levels.layout(l).create_vector(&u));
     PetscCallAbort(levels.layout(l).comm(), levels.layout(l).create_vector(&v));

@@ -28,11 +28,14 @@ SimulationOptions SimulationOptions::from_petsc_options() {
                  PetscOptionsGetBool(nullptr, nullptr, "-mlshell_quiet", &flag, nullptr));
   o.quiet = flag;
   flag = PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetBool(nullptr, nullptr, "-mlshell_hierarchy_view", &flag, nullptr));
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_hierarchy_view", &flag, nullptr));
   o.hierarchy_view = flag;
   char dir[PETSC_MAX_PATH_LEN];
   PetscBool has_dir = PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetString(nullptr, nullptr, "-mlshell_hierarchy_write", dir, sizeof dir, &has_dir));
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetString(nullptr, nullptr, "-mlshell_hierarchy_write", dir,
+                                       sizeof dir, &has_dir));
   if (has_dir) o.hierarchy_write = dir;
   PetscCallAbort(PETSC_COMM_WORLD,
                  PetscOptionsGetInt(nullptr, nullptr, "-mlshell_gauss_points", &gauss, nullptr));
@@ -85,9 +88,14 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
     if (options_.hierarchy_view) PetscCallAbort(comm, view_hierarchy(levels, comm));
     if (!options_.hierarchy_write.empty()) write_hierarchy(levels, options_.hierarchy_write);
   }
-  disc_ = std::make_unique<Discretization>(hierarchy_->finest(), options_.gauss_points);
-  layout_ = std::make_unique<ParallelLayout>(comm, *disc_);
-  problem_ = build_level_problem(scene_, *disc_, *layout_, frame_);
+  // RMTR needs the scene on every level; other solvers only on the finest.
+  const int finest = hierarchy_->num_levels() - 1;
+  const int coarsest = step_solver_type() == "rmtr" ? 0 : finest;
+  levels_ = std::make_unique<LevelHierarchy>(comm, *hierarchy_, coarsest, options_.gauss_points);
+  multilevel_ = std::make_unique<MultilevelProblem>(scene_, *levels_, frame_);
+  disc_ = &levels_->discretization(levels_->finest());
+  layout_ = &levels_->layout(levels_->finest());
+  problem_ = &multilevel_->level(levels_->finest());
   for (const Probe& p : scene_.probes) {
     try {
       probes_.push_back(
@@ -171,12 +179,8 @@ PetscErrorCode Simulation::set_initial_state() {
 
 PetscErrorCode Simulation::evaluate(int* status) {
   PetscFunctionBeginUser;
-  problem_->set_time(first_step_ * scene_.time.dt);
-  if (auto* inertia = problem_->find_term<InertiaTerm>()) {
-    std::vector<double> local;
-    PetscCall(layout_->to_local(u_, local));
-    inertia->set_predictor(local);
-  }
+  // The predictor of the first step's inertia is û = u₀ + dt v₀.
+  PetscCall(multilevel_->synchronize(first_step_ * scene_.time.dt, u_, v_));
   std::vector<double> energies;
   PetscReal f, gnorm;
   PetscCall(problem_->report(u_, energies, &f, &gnorm));
@@ -196,18 +200,10 @@ PetscErrorCode Simulation::evaluate(int* status) {
 PetscErrorCode Simulation::step(int n, SolveReport& report) {
   PetscFunctionBeginUser;
   const double dt = scene_.time.dt, t = n * dt;
-  problem_->set_time(t);
   PetscCall(VecCopy(u_, u_prev_));
-  if (auto* inertia = problem_->find_term<InertiaTerm>()) {
-    // û = u_n + dt v_n
-    Vec predictor;
-    std::vector<double> local;
-    PetscCall(VecDuplicate(u_, &predictor));
-    PetscCall(VecWAXPY(predictor, dt, v_, u_));
-    PetscCall(layout_->to_local(predictor, local));
-    PetscCall(VecDestroy(&predictor));
-    inertia->set_predictor(std::move(local));
-  }
+  // Every level to time t, with the inertia predictor û = u_n + dt v_n (projected on the
+  // coarse levels).
+  PetscCall(multilevel_->synchronize(t, u_, v_));
   PetscCall(solver_->solve(u_, report));
   // v_{n+1} = (u_{n+1} − u_n) / dt
   PetscCall(VecWAXPY(v_, -1.0, u_prev_, u_));
@@ -222,7 +218,7 @@ PetscErrorCode Simulation::run(int* status) {
     PetscCall(evaluate(status));
     PetscFunctionReturn(0);
   }
-  solver_ = std::make_unique<StepSolver>(*problem_);
+  solver_ = std::make_unique<StepSolver>(*problem_, multilevel_.get());
   PetscCall(
       PetscPrintf(comm_,
                   "mlshell: %s: %d dofs (%d elements, h = %.4g m) on %d rank(s), %d step(s) of "
@@ -251,6 +247,7 @@ PetscErrorCode Simulation::run(int* status) {
     PetscCall(step(n, report));
     const double wall = MPI_Wtime() - t0;
     total_iterations_ += report.iterations;
+    rmtr_totals_ += report.rmtr;
     ++steps_done_;
     std::vector<double> energies;
     PetscCall(problem_->term_energies(u_, energies));

@@ -1,5 +1,7 @@
 // Result files of a run (see simulation.hpp): limit-surface frames (HDF5/XDMF, OBJ),
 // checkpoints of converged steps, and summary.json — written by rank 0 from natural-order data.
+#include "simulation_output.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -7,7 +9,6 @@
 
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
-#include "simulation_output.hpp"
 
 namespace mlshell {
 
@@ -89,6 +90,23 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                         {"objective_evaluations", Json(problem_->objective_evaluations())},
                         {"hessian_evaluations", Json(problem_->hessian_evaluations())},
                         {"inadmissible_trial_points", Json(problem_->inadmissible_evaluations())}};
+    if (!rmtr_totals_.levels.empty()) {
+      // Work of RMTR summed over the steps (paper eq. 7.2-7.4); level 0 is the coarsest.
+      Json::Array levels;
+      for (const RmtrLevelStatistics& l : rmtr_totals_.levels)
+        levels.push_back(Json(Json::Object{{"dofs", Json(static_cast<long long>(l.dofs))},
+                                           {"successful", Json(l.successful)},
+                                           {"assemblies", Json(l.assemblies)},
+                                           {"qp_solves", Json(l.qp_solves)},
+                                           {"objectives", Json(l.objectives)},
+                                           {"coarse_accepted", Json(l.coarse_accepted)},
+                                           {"coarse_rejected", Json(l.coarse_rejected)}}));
+      solver.emplace_back(
+          "rmtr", Json(Json::Object{{"cycles", Json(rmtr_totals_.cycles)},
+                                    {"levels", Json(levels)},
+                                    {"assembly_work_units", Json(rmtr_totals_.assembly_work_units)},
+                                    {"qp_work_units", Json(rmtr_totals_.qp_work_units)}}));
+    }
     Json summary(Json::Object{{"scene", Json(scene_.name)},
                               {"status", Json(status)},
                               {"dofs", Json(disc_->num_dofs())},

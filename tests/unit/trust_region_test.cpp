@@ -87,8 +87,8 @@ TEST(TrustRegionQp, DoglegHandlesAnIndefiniteHessian) {
   // Positive curvature along g, and even along the Newton point, but an indefinite H (found by
   // the inertia of the LDLᵀ factor): the Cauchy point is used.
   SmallModel n({1.0, -0.01}, {1.0, 0.01});
-  qp.set_operator(n.H);
-  qp.solve(n.g, 100.0, n.s, r);
+  ASSERT_EQ(qp.set_operator(n.H), 0);
+  ASSERT_EQ(qp.solve(n.g, 100.0, n.s, r), 0);
   EXPECT_STREQ(r.kind, "cauchy");
   EXPECT_GT(r.model_decrease, 0.0);
 }

@@ -1,0 +1,106 @@
+// Local_TR (paper Alg. 4.1) on one Objective: the iteration shared by the TAO type "tr" and by
+// every level of RMTR (pre-/post-smoothing and the coarsest-level solve).
+//
+// One iteration solves the subproblem (4.1) with the level's QP solver, evaluates the trial
+// point, accepts it when ρ = (f(x) − f(x+s)) / (m(0) − m(s)) > η₁ (eq. 4.2), and updates the
+// radius (Table 2). Derivatives are reassembled only after an accepted step, so a rejected step
+// reuses the Hessian (and a Dogleg factorisation).
+//
+// The radius may be measured in a level norm other than ℓ₂ (RMTR's ‖·‖_l, eq. 4.9): the QP is
+// then given the ℓ₂ radius Δ·‖g‖₂/‖g‖_l, and a step still longer than Δ in the level norm is
+// shortened along its own direction (which keeps m(s) < 0), so ‖s‖_l ≤ Δ always holds.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "mlshell/objective.hpp"
+#include "mlshell/trust_region_qp.hpp"
+
+namespace mlshell {
+
+/// η₁, η₂, γ₁, γ₂ of Table 2, and the radius update they define.
+struct TrustRegionParameters {
+  PetscReal eta1 = 0.1, eta2 = 0.75, gamma1 = 0.5, gamma2 = 2.0;
+  /// The radius after a step of length ‖s‖ with ratio ρ: shrink to γ₁·min(Δ, ‖s‖) when ρ ≤ η₁,
+  /// expand to γ₂Δ (at most 1e30) when ρ > η₂, else keep Δ (the standard half of Alg. 4.3).
+  PetscReal updated_radius(PetscReal rho, PetscReal delta, PetscReal step_norm) const;
+  /// Raises PETSC_ERR_ARG_OUTOFRANGE unless 0 < η₁ < η₂ < 1 and 0 < γ₁ < 1 < γ₂.
+  PetscErrorCode validate(MPI_Comm comm, const char* who) const;
+};
+
+/// Reads `<prefix>eta1`, `eta2`, `gamma1`, `gamma2` inside a PetscOptionsBegin/End block.
+PetscErrorCode trust_region_parameter_options(PetscOptionItems* PetscOptionsObject,
+                                              const std::string& prefix, TrustRegionParameters* p);
+
+/// Work done by one Local_TR (or one level of RMTR).
+struct TrustRegionCounters {
+  long accepted = 0;    ///< successful iterations
+  long qp_solves = 0;   ///< subproblem solves
+  long objectives = 0;  ///< trial-point evaluations
+  long hessians = 0;    ///< derivative assemblies (gradient and Hessian)
+  TrustRegionCounters& operator+=(const TrustRegionCounters& o) {
+    accepted += o.accepted;
+    qp_solves += o.qp_solves;
+    objectives += o.objectives;
+    hessians += o.hessians;
+    return *this;
+  }
+};
+
+/// The outcome of one iteration.
+struct TrustRegionIteration {
+  bool accepted = false;
+  PetscReal rho = 0.0;        ///< eq. (4.2); −inf when the trial point was not evaluated
+  PetscReal step_norm = 0.0;  ///< ‖s‖ in the level norm
+  PetscReal decrease = 0.0;   ///< f(x) − f(x+s) if accepted, else 0
+  QpResult qp;
+};
+
+/// ‖v‖ in the norm the radius is measured in.
+using LevelNorm = std::function<PetscErrorCode(Vec, PetscReal*)>;
+
+class LocalTrustRegion {
+ public:
+  /// `H` holds ∇²f (filled here); `norm` is the level norm (empty: ℓ₂).
+  LocalTrustRegion(Objective& f, Vec like, Mat H, std::unique_ptr<TrustRegionQp> qp,
+                   LevelNorm norm = {});
+  ~LocalTrustRegion();
+  LocalTrustRegion(const LocalTrustRegion&) = delete;
+  LocalTrustRegion& operator=(const LocalTrustRegion&) = delete;
+
+  /// Moves to x and assembles f, ∇f and ∇²f there. A value and gradient already known at x can
+  /// be passed to skip their evaluation. If f or ∇f is not finite there, finite() turns false and
+  /// no iteration may follow.
+  PetscErrorCode start(Vec x, const PetscReal* f = nullptr, Vec g = nullptr);
+  /// One iteration of Alg. 4.1 with radius *delta (updated with `p`).
+  PetscErrorCode iterate(const TrustRegionParameters& p, PetscReal* delta,
+                         TrustRegionIteration* it);
+  /// Moves to x + s and reassembles the value and derivatives there.
+  PetscErrorCode accept(Vec s);
+  /// ‖v‖ in the level norm.
+  PetscErrorCode level_norm(Vec v, PetscReal* norm) const;
+
+  Objective& objective() { return f_; }
+  Vec solution() const { return x_; }
+  Vec gradient() const { return g_; }
+  PetscReal value() const { return fx_; }
+  PetscReal gradient_norm() const { return gnorm_; }
+  bool finite() const { return finite_; }
+  const TrustRegionCounters& counters() const { return counters_; }
+  void reset_counters() { counters_ = {}; }
+
+ private:
+  PetscErrorCode assemble_derivatives();
+  Objective& f_;
+  Mat H_;
+  std::unique_ptr<TrustRegionQp> qp_;
+  LevelNorm norm_;
+  Vec x_ = nullptr, g_ = nullptr, s_ = nullptr, trial_ = nullptr;
+  PetscReal fx_ = 0.0, gnorm_ = 0.0;
+  bool finite_ = false;
+  TrustRegionCounters counters_;
+};
+
+}  // namespace mlshell

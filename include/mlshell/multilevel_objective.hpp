@@ -1,0 +1,32 @@
+// What RMTR sees of a level hierarchy (paper §4.2): per level an objective f^l with its Hessian,
+// and the transfers between neighbouring levels — all on distributed vectors, never a mesh.
+// Level 0 is the coarsest. MultilevelProblem implements it for a scene.
+#pragma once
+
+#include <petscmat.h>
+
+#include "mlshell/objective.hpp"
+
+namespace mlshell {
+
+class MultilevelObjective {
+ public:
+  virtual ~MultilevelObjective() = default;
+  virtual int num_levels() const = 0;
+  /// f^l, the problem re-discretised on level l (the finest is the problem being solved).
+  virtual Objective& level_objective(int l) = 0;
+  virtual PetscErrorCode create_vector(int l, Vec* v) const = 0;
+  virtual PetscErrorCode create_hessian(int l, Mat* H) const = 0;
+  /// I_l^{l+1} (coarse corrections to level l+1) and R_{l+1}^l = (I_l^{l+1})ᵀ, for l + 1 <
+  /// num_levels().
+  virtual Mat prolongation(int l) const = 0;
+  virtual Mat restriction(int l) const = 0;
+  /// The projection of level l+1 iterates onto level l by reverse subdivision, Q_{l+1}^l.
+  virtual Mat projection(int l) const = 0;
+  /// The least-squares projection (I_l^{l+1}ᵀ I_l^{l+1})⁻¹ I_l^{l+1}ᵀ of `fine` onto level l.
+  virtual PetscErrorCode least_squares_projection(int l, Vec fine, Vec coarse) const = 0;
+  /// ‖I_{L−1}^L ⋯ I_l^{l+1} x‖₂, the level norm of eq. (4.9).
+  virtual PetscErrorCode composite_norm(int l, Vec x, PetscReal* norm) const = 0;
+};
+
+}  // namespace mlshell

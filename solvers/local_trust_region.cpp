@@ -1,0 +1,153 @@
+// Local_TR, paper Alg. 4.1 (see local_trust_region.hpp).
+#include "mlshell/local_trust_region.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace mlshell {
+
+PetscReal TrustRegionParameters::updated_radius(PetscReal rho, PetscReal delta,
+                                                PetscReal step_norm) const {
+  if (!(rho > eta1)) return gamma1 * std::min(delta, step_norm > 0 ? step_norm : delta);
+  // Capped far beyond any meaningful step (and the 1e15 of eq. 7.1) so that it never overflows.
+  if (rho > eta2) return std::min<PetscReal>(gamma2 * delta, 1e30);
+  return delta;
+}
+
+PetscErrorCode TrustRegionParameters::validate(MPI_Comm comm, const char* who) const {
+  PetscFunctionBeginUser;
+  PetscCheck(eta1 > 0 && eta1 < eta2 && eta2 < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "%s: need 0 < eta1 < eta2 < 1, got eta1 = %g and eta2 = %g", who, (double)eta1,
+             (double)eta2);
+  PetscCheck(gamma1 > 0 && gamma1 < 1 && gamma2 > 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "%s: need 0 < gamma1 < 1 < gamma2, got gamma1 = %g and gamma2 = %g", who,
+             (double)gamma1, (double)gamma2);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode trust_region_parameter_options(PetscOptionItems* PetscOptionsObject,
+                                              const std::string& prefix, TrustRegionParameters* p) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsReal((prefix + "eta1").c_str(), "acceptance threshold on rho", "", p->eta1,
+                             &p->eta1, nullptr));
+  PetscCall(PetscOptionsReal((prefix + "eta2").c_str(), "expansion threshold on rho", "", p->eta2,
+                             &p->eta2, nullptr));
+  PetscCall(PetscOptionsReal((prefix + "gamma1").c_str(), "radius shrink factor", "", p->gamma1,
+                             &p->gamma1, nullptr));
+  PetscCall(PetscOptionsReal((prefix + "gamma2").c_str(), "radius expansion factor", "", p->gamma2,
+                             &p->gamma2, nullptr));
+  PetscFunctionReturn(0);
+}
+
+LocalTrustRegion::LocalTrustRegion(Objective& f, Vec like, Mat H, std::unique_ptr<TrustRegionQp> qp,
+                                   LevelNorm norm)
+    : f_(f), H_(H), qp_(std::move(qp)), norm_(std::move(norm)) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(like));
+  PetscCallAbort(comm, VecDuplicate(like, &x_));
+  PetscCallAbort(comm, VecDuplicate(like, &g_));
+  PetscCallAbort(comm, VecDuplicate(like, &s_));
+  PetscCallAbort(comm, VecDuplicate(like, &trial_));
+}
+
+LocalTrustRegion::~LocalTrustRegion() {
+  VecDestroy(&x_);
+  VecDestroy(&g_);
+  VecDestroy(&s_);
+  VecDestroy(&trial_);
+}
+
+PetscErrorCode LocalTrustRegion::level_norm(Vec v, PetscReal* norm) const {
+  PetscFunctionBeginUser;
+  if (norm_)
+    PetscCall(norm_(v, norm));
+  else
+    PetscCall(VecNorm(v, NORM_2, norm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalTrustRegion::assemble_derivatives() {
+  PetscFunctionBeginUser;
+  PetscCall(VecNorm(g_, NORM_2, &gnorm_));
+  finite_ = std::isfinite(fx_) && std::isfinite(gnorm_);
+  if (finite_) {
+    PetscCall(f_.hessian(x_, H_));
+    ++counters_.hessians;
+    PetscCall(qp_->set_operator(H_));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalTrustRegion::start(Vec x, const PetscReal* f, Vec g) {
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(x, x_));
+  if (f && g) {
+    fx_ = *f;
+    PetscCall(VecCopy(g, g_));
+  } else {
+    PetscCall(f_.objective(x_, &fx_, g_));
+  }
+  PetscCall(assemble_derivatives());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalTrustRegion::accept(Vec s) {
+  PetscFunctionBeginUser;
+  PetscCall(VecAXPY(x_, 1.0, s));
+  PetscCall(f_.objective(x_, &fx_, g_));
+  ++counters_.accepted;
+  PetscCall(assemble_derivatives());
+  // The trial value was finite, so the same point evaluated with its gradient must be too.
+  PetscCheck(finite_, PetscObjectComm((PetscObject)x_), PETSC_ERR_FP,
+             "trust region: the gradient is not finite at an accepted point (f = %g, |g| = %g)",
+             (double)fx_, (double)gnorm_);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscReal* delta,
+                                         TrustRegionIteration* it) {
+  PetscFunctionBeginUser;
+  *it = TrustRegionIteration{};
+  PetscCheck(finite_, PetscObjectComm((PetscObject)x_), PETSC_ERR_ARG_WRONGSTATE,
+             "trust region: iterate() at a point where f or its gradient is not finite");
+  // The QP works in ℓ₂: translate the level-norm radius with the ratio of the two norms along
+  // the steepest-descent direction, where the step starts.
+  PetscReal qp_radius = *delta;
+  if (norm_ && gnorm_ > 0) {
+    PetscReal glevel;
+    PetscCall(level_norm(g_, &glevel));
+    if (glevel > 0) qp_radius = *delta * gnorm_ / glevel;
+  }
+  PetscCall(qp_->solve(g_, qp_radius, s_, it->qp));
+  ++counters_.qp_solves;
+  PetscReal model_decrease = it->qp.model_decrease;
+  it->step_norm = it->qp.step_norm;
+  if (norm_) {
+    PetscCall(level_norm(s_, &it->step_norm));
+    if (it->step_norm > *delta) {  // shorten along s: m(ts) < 0 for t ∈ (0, 1] if m(s) < 0
+      PetscCall(VecScale(s_, *delta / it->step_norm));
+      it->step_norm = *delta;
+      PetscReal m;
+      PetscCall(quadratic_model(H_, g_, s_, &m));
+      model_decrease = -m;
+    }
+  }
+  PetscReal ft = PETSC_INFINITY;
+  it->rho = -PETSC_INFINITY;
+  if (model_decrease > 0.0 && std::isfinite(model_decrease)) {
+    PetscCall(VecWAXPY(trial_, 1.0, s_, x_));
+    PetscCall(f_.objective(trial_, &ft, nullptr));
+    ++counters_.objectives;
+    if (std::isfinite(ft)) it->rho = (fx_ - ft) / model_decrease;
+  }
+  if (it->rho > p.eta1) {
+    const PetscReal f_old = fx_;
+    PetscCall(accept(s_));
+    it->accepted = true;
+    it->decrease = f_old - fx_;
+  }
+  *delta = p.updated_radius(it->rho, *delta, it->step_norm);
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell

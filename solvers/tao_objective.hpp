@@ -1,0 +1,27 @@
+// The objective a Tao was given (TaoSetObjectiveAndGradient, TaoSetHessian) seen as an
+// Objective, so that mlshell's own TAO types run their levels through one interface and TAO's
+// evaluation counters stay right.
+#pragma once
+
+#include <petsc/private/taoimpl.h>
+
+#include "mlshell/objective.hpp"
+
+namespace mlshell {
+
+class TaoObjective final : public Objective {
+ public:
+  explicit TaoObjective(Tao tao) : tao_(tao) {}
+  PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
+    return g ? TaoComputeObjectiveAndGradient(tao_, x, f, g) : TaoComputeObjective(tao_, x, f);
+  }
+  PetscErrorCode hessian(Vec x, Mat H) override {
+    return TaoComputeHessian(tao_, x, H,
+                             tao_->hessian_pre == tao_->hessian ? H : tao_->hessian_pre);
+  }
+
+ private:
+  Tao tao_;
+};
+
+}  // namespace mlshell

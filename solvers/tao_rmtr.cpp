@@ -1,0 +1,534 @@
+// RMTR, the recursive multilevel trust-region method (paper Alg. 4.2 with the radius update of
+// Alg. 4.3), as the TAO type "rmtr".
+//
+// One iteration of the Tao is one V-cycle. On level l (0 the coarsest, L the finest):
+//   1. μ₁ Local_TR pre-smoothing steps on the level model h^l (eq. 4.3; h^L = f^L);
+//   2. if l > 0: x₀^{l−1} = P x^l (eq. 4.6), h^{l−1} built with the first-order consistency term
+//      so that ∇h^{l−1}(x₀^{l−1}) = R ∇h^l (eq. 4.4–4.5), RMTR on level l−1 with the radius
+//      Δ^l bounding its steps in the level norm ‖·‖_{l−1} (eq. 4.8–4.9), and the prolongated
+//      correction s = I (x^{l−1} − x₀^{l−1}) (eq. 4.10) accepted if the multilevel ratio
+//      ρ = (h^l(x) − h^l(x+s)) / (h^{l−1}(x₀^{l−1}) − h^{l−1}(x^{l−1})) > η₁ (eq. 4.11);
+//   3. μ₂ post-smoothing steps.
+// The coarsest level takes μ₁ + μ₂ steps (no recursion), with Dogleg and a sparse direct
+// factorisation; the other levels smooth with 10 Steihaug–Toint CG iterations (§7.3).
+// After every step on a coarse level the radius is capped so that the level's iterates stay
+// within the finer radius: with d = ‖x − x₀‖_l, Δ ← min(Δ₊, Δ^{l+1} − d), and the level stops
+// when d > (1 − ε^Δ) Δ^{l+1} (Alg. 4.3). A level also stops when ‖∇h^l‖ ≤ ε_g (-tao_gatol).
+// Stopping: TAO's tolerances on the finest gradient (eq. 7.1, first part), |Δf| or ‖Δx‖ over a
+// V-cycle below -tao_rmtr_stagnation while Δ > 1e15 (eq. 7.1, second part), or the radius
+// shrinking below -tao_rmtr_min_radius · max(1, ‖x‖) (DIVERGED_TR_REDUCTION).
+//
+// Options (Table 2 defaults):
+//   -tao_rmtr_levels <all>           number of levels used (the finest ones of the hierarchy)
+//   -tao_rmtr_mu1 1 -tao_rmtr_mu2 1  pre- and post-smoothing steps
+//   -tao_rmtr_coarse_max_it <μ₁+μ₂>  Local_TR steps on the coarsest level per visit
+//   -tao_rmtr_delta0 1 -tao_rmtr_eta1 0.1 -tao_rmtr_eta2 0.75 -tao_rmtr_gamma1 0.5
+//   -tao_rmtr_gamma2 2 -tao_rmtr_eps_delta 0.001
+//   -tao_rmtr_projection reverse|lsq|restriction   P of eq. (4.6): reverse subdivision Q,
+//        least squares (IᵀI)⁻¹Iᵀ, or restriction scaled to preserve constants (diag(R1)⁻¹R)
+//   -tao_rmtr_smoother_qp stcg|dogleg   -tao_rmtr_coarse_qp dogleg|stcg
+//   -tao_rmtr_stcg_max_it 10         STCG iterations per smoothing step
+//   -tao_rmtr_monitor                one line per V-cycle
+//   per-level QP options, PCMG style: -rmtr_levels_<l>_ksp_max_it, -rmtr_levels_<l>_pc_type ...
+//   for levels l ≥ 1 and -rmtr_coarse_pc_factor_mat_solver_type mumps ... for level 0.
+#include <petsc/private/taoimpl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mlshell/coarse_level_model.hpp"
+#include "mlshell/local_trust_region.hpp"
+#include "mlshell/trust_region.hpp"
+#include "tao_objective.hpp"
+#include "tao_registration.hpp"
+
+namespace mlshell {
+
+namespace {
+
+enum Projection { kReverse = 0, kLeastSquares = 1, kRestriction = 2 };
+const char* const kProjectionNames[] = {"reverse",    "lsq",         "restriction",
+                                        "Projection", "PROJECTION_", nullptr};
+const char* const kQpNames[] = {"dogleg", "stcg", "RmtrQp", "RMTR_QP_", nullptr};
+
+struct Level {
+  Objective* objective = nullptr;           // h^l
+  std::unique_ptr<CoarseLevelModel> model;  // l < L
+  Mat H = nullptr;                          // owned for l < L
+  std::unique_ptr<LocalTrustRegion> tr;
+  Vec x0 = nullptr, restricted = nullptr;     // l < L: x₀^l and R ∇h^{l+1}
+  Vec correction = nullptr, trial = nullptr;  // l > 0: prolongated correction, x + s
+  Vec inverse_row_sums = nullptr;             // l < L, projection by restriction
+  Vec scratch = nullptr;                      // l < L: x − x₀
+  long objectives = 0;                        // coarse-correction trial points
+  RmtrLevelStatistics stats;
+};
+
+struct RmtrContext {
+  MultilevelObjective* hierarchy = nullptr;
+  PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
+  PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0;
+  PetscReal delta0 = 1.0, eps_delta = 1e-3, stagnation = 1e-12, min_radius = 1e-14;
+  PetscBool monitor = PETSC_FALSE;
+  TrustRegionParameters params;
+  std::unique_ptr<TaoObjective> finest;
+  std::vector<Level> levels;
+  int offset = 0;  // hierarchy level of RMTR level 0
+  long cycle_accepted = 0, cycle_rejected = 0;
+  RmtrStatistics stats;
+};
+
+int finest(const RmtrContext& c) { return static_cast<int>(c.levels.size()) - 1; }
+
+void destroy_levels(RmtrContext& c) {
+  for (Level& lv : c.levels) {
+    lv.tr.reset();
+    if (&lv != &c.levels.back()) MatDestroy(&lv.H);
+    VecDestroy(&lv.x0);
+    VecDestroy(&lv.restricted);
+    VecDestroy(&lv.correction);
+    VecDestroy(&lv.trial);
+    VecDestroy(&lv.inverse_row_sums);
+    VecDestroy(&lv.scratch);
+  }
+  c.levels.clear();
+}
+
+std::unique_ptr<TrustRegionQp> make_qp(MPI_Comm comm, PetscInt kind, const std::string& prefix,
+                                       PetscInt stcg_max_it) {
+  if (kind == 0) return std::make_unique<DoglegQp>(comm, prefix);
+  return std::make_unique<SteihaugTointQp>(comm, prefix, static_cast<int>(stcg_max_it));
+}
+
+PetscErrorCode setup(Tao tao) {
+  auto* c = static_cast<RmtrContext*>(tao->data);
+  PetscFunctionBeginUser;
+  if (!tao->gradient) PetscCall(VecDuplicate(tao->solution, &tao->gradient));
+  if (!c->levels.empty()) PetscFunctionReturn(0);
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(tao));
+  const int available = c->hierarchy ? c->hierarchy->num_levels() : 1;
+  const int n = c->requested_levels > 0 ? static_cast<int>(c->requested_levels) : available;
+  PetscCheck(n <= available, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_levels: %d level(s) requested but the hierarchy has %d (raise the scene's "
+             "geometry.refine for more)",
+             n, available);
+  c->offset = available - n;
+  const char* prefix = nullptr;
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  const std::string p = prefix ? prefix : "";
+  c->finest = std::make_unique<TaoObjective>(tao);
+  c->levels.resize(n);
+  const int L = n - 1;
+  for (int l = 0; l <= L; ++l) {
+    Level& lv = c->levels[l];
+    const int h = c->offset + l;
+    Vec like = tao->solution;
+    if (l < L) {
+      PetscCall(c->hierarchy->create_vector(h, &lv.x0));
+      PetscCall(VecDuplicate(lv.x0, &lv.restricted));
+      PetscCall(VecDuplicate(lv.x0, &lv.scratch));
+      PetscCall(c->hierarchy->create_hessian(h, &lv.H));
+      lv.model = std::make_unique<CoarseLevelModel>(c->hierarchy->level_objective(h));
+      lv.objective = lv.model.get();
+      like = lv.x0;
+      if (c->projection == kRestriction) {  // diag(R 1)⁻¹
+        Vec ones;
+        PetscCall(MatCreateVecs(c->hierarchy->restriction(h), &ones, nullptr));
+        PetscCall(VecSet(ones, 1.0));
+        PetscCall(VecDuplicate(lv.x0, &lv.inverse_row_sums));
+        PetscCall(MatMult(c->hierarchy->restriction(h), ones, lv.inverse_row_sums));
+        PetscCall(VecReciprocal(lv.inverse_row_sums));
+        PetscCall(VecDestroy(&ones));
+      }
+    } else {
+      lv.H = tao->hessian;
+      lv.objective = c->finest.get();
+    }
+    if (l > 0) {
+      PetscCall(VecDuplicate(like, &lv.correction));
+      PetscCall(VecDuplicate(like, &lv.trial));
+    }
+    const std::string qp_prefix =
+        l == 0 ? p + "rmtr_coarse_" : p + "rmtr_levels_" + std::to_string(l) + "_";
+    LevelNorm norm;
+    if (l < L) {
+      MultilevelObjective* hierarchy = c->hierarchy;
+      norm = [hierarchy, h](Vec v, PetscReal* r) { return hierarchy->composite_norm(h, v, r); };
+    }
+    lv.tr = std::make_unique<LocalTrustRegion>(
+        *lv.objective, like, lv.H,
+        make_qp(comm, l == 0 ? c->coarse_qp : c->smoother_qp, qp_prefix, c->stcg_max_it),
+        std::move(norm));
+    PetscCall(VecGetSize(like, &lv.stats.dofs));
+  }
+  PetscFunctionReturn(0);
+}
+
+/// Alg. 4.3, second half: caps the radius of level l < L so that its iterates stay within the
+/// finer level's radius Δ^{l+1}; sets *delta = 0 when no room is left.
+PetscErrorCode cap_radius(RmtrContext& c, int l, PetscReal fine_radius, PetscReal* delta) {
+  Level& lv = c.levels[l];
+  PetscFunctionBeginUser;
+  if (l == finest(c)) PetscFunctionReturn(0);
+  PetscCall(VecWAXPY(lv.scratch, -1.0, lv.x0, lv.tr->solution()));
+  PetscReal d;
+  PetscCall(lv.tr->level_norm(lv.scratch, &d));
+  *delta = d > (1.0 - c.eps_delta) * fine_radius ? 0.0 : std::min(*delta, fine_radius - d);
+  PetscFunctionReturn(0);
+}
+
+/// Up to `steps` Local_TR iterations on level l. Returns false in *go_on when the level is done
+/// (gradient below ε_g, or no radius left).
+PetscErrorCode smooth(Tao tao, RmtrContext& c, int l, int steps, PetscReal fine_radius,
+                      PetscReal* delta, std::vector<long>& successful, bool* go_on) {
+  Level& lv = c.levels[l];
+  PetscFunctionBeginUser;
+  *go_on = true;
+  for (int i = 0; i < steps; ++i) {
+    if (lv.tr->gradient_norm() <= tao->gatol || *delta <= 0.0) {
+      *go_on = false;
+      break;
+    }
+    TrustRegionIteration it;
+    PetscCall(lv.tr->iterate(c.params, delta, &it));
+    tao->ksp_its += it.qp.iterations;
+    tao->ksp_tot_its += it.qp.iterations;
+    if (it.accepted) ++successful[l];
+    PetscCall(cap_radius(c, l, fine_radius, delta));
+  }
+  if (lv.tr->gradient_norm() <= tao->gatol || *delta <= 0.0) *go_on = false;
+  PetscFunctionReturn(0);
+}
+
+/// x₀^{l−1} = P x^l (eq. 4.6).
+PetscErrorCode project(RmtrContext& c, int l, Vec fine, Vec coarse) {
+  const int h = c.offset + l - 1;
+  Level& lc = c.levels[l - 1];
+  PetscFunctionBeginUser;
+  switch (c.projection) {
+    case kReverse:
+      PetscCall(MatMult(c.hierarchy->projection(h), fine, coarse));
+      break;
+    case kLeastSquares:
+      PetscCall(c.hierarchy->least_squares_projection(h, fine, coarse));
+      break;
+    default:
+      PetscCall(MatMult(c.hierarchy->restriction(h), fine, coarse));
+      PetscCall(VecPointwiseMult(coarse, coarse, lc.inverse_row_sums));
+  }
+  PetscFunctionReturn(0);
+}
+
+/// One V-cycle from level l down (Alg. 4.2). `fine_radius` is Δ^{l+1} (∞ on the finest level),
+/// *delta the level's radius; successful[k] counts accepted steps on level k ≤ l that survive.
+PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, PetscReal* delta,
+                     std::vector<long>& successful) {
+  Level& lv = c.levels[l];
+  PetscFunctionBeginUser;
+  bool go_on;
+  const int pre = l == 0 ? static_cast<int>(c.coarse_max_it) : static_cast<int>(c.mu1);
+  PetscCall(smooth(tao, c, l, pre, fine_radius, delta, successful, &go_on));
+  if (l == 0 || !go_on) PetscFunctionReturn(0);
+
+  // Coarse-level correction.
+  Level& lc = c.levels[l - 1];
+  PetscCall(project(c, l, lv.tr->solution(), lc.x0));
+  PetscCall(MatMult(c.hierarchy->restriction(c.offset + l - 1), lv.tr->gradient(), lc.restricted));
+  PetscReal rg, f0;
+  PetscCall(VecNorm(lc.restricted, NORM_2, &rg));
+  bool attempted = false;
+  if (rg > tao->gatol) {
+    PetscCall(lc.model->initialize(lc.x0, lc.restricted, &f0));
+    PetscCall(lc.tr->start(lc.x0, &f0, lc.restricted));
+    attempted = lc.tr->finite();  // a projected state outside the material's domain: skip
+  }
+  if (attempted) {
+    std::vector<long> coarse_successful(successful.size(), 0);
+    PetscReal coarse_delta = *delta;  // Δ_{c,0}^{l−1} = Δ_{c,μ₁}^l
+    PetscCall(cycle(tao, c, l - 1, *delta, &coarse_delta, coarse_successful));
+    const PetscReal coarse_reduction = f0 - lc.tr->value();
+    PetscReal rho = -PETSC_INFINITY, step_norm = 0.0;
+    if (coarse_reduction > 0.0) {
+      PetscCall(VecWAXPY(lc.scratch, -1.0, lc.x0, lc.tr->solution()));  // coarse correction
+      PetscCall(MatMult(c.hierarchy->prolongation(c.offset + l - 1), lc.scratch, lv.correction));
+      PetscCall(lv.tr->level_norm(lv.correction, &step_norm));
+      PetscCall(VecWAXPY(lv.trial, 1.0, lv.correction, lv.tr->solution()));
+      PetscReal ft;
+      PetscCall(lv.objective->objective(lv.trial, &ft, nullptr));
+      ++lv.objectives;
+      if (std::isfinite(ft)) rho = (lv.tr->value() - ft) / coarse_reduction;
+    }
+    if (rho > c.params.eta1) {
+      PetscCall(lv.tr->accept(lv.correction));
+      ++lv.stats.coarse_accepted;
+      ++successful[l];
+      for (int k = 0; k < l; ++k) successful[k] += coarse_successful[k];
+      if (l == finest(c)) ++c.cycle_accepted;
+    } else {
+      ++lv.stats.coarse_rejected;
+      if (l == finest(c)) ++c.cycle_rejected;
+    }
+    if (coarse_reduction > 0.0) {
+      *delta = c.params.updated_radius(rho, *delta, step_norm);
+      PetscCall(cap_radius(c, l, fine_radius, delta));
+    }
+  }
+  PetscCall(smooth(tao, c, l, static_cast<int>(c.mu2), fine_radius, delta, successful, &go_on));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode collect_statistics(RmtrContext& c) {
+  PetscFunctionBeginUser;
+  const int L = finest(c);
+  c.stats.assembly_work_units = c.stats.qp_work_units = 0.0;
+  c.stats.levels.resize(c.levels.size());
+  for (int l = 0; l <= L; ++l) {
+    Level& lv = c.levels[l];
+    RmtrLevelStatistics& s = c.stats.levels[l];
+    const TrustRegionCounters& t = lv.tr->counters();
+    s.dofs = lv.stats.dofs;
+    s.assemblies = t.hessians;
+    s.qp_solves = t.qp_solves;
+    s.objectives = t.objectives + lv.objectives;
+    s.coarse_accepted = lv.stats.coarse_accepted;
+    s.coarse_rejected = lv.stats.coarse_rejected;
+    const double weight = std::ldexp(1.0, -2 * (L - l));  // W^l / W^L, eq. (7.3)
+    c.stats.assembly_work_units += weight * s.assemblies;
+    c.stats.qp_work_units += weight * s.qp_solves;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode solve(Tao tao) {
+  auto* c = static_cast<RmtrContext*>(tao->data);
+  PetscFunctionBeginUser;
+  const int L = finest(*c);
+  Level& top = c->levels[L];
+  for (Level& lv : c->levels) {
+    lv.tr->reset_counters();
+    lv.objectives = 0;
+    lv.stats.coarse_accepted = lv.stats.coarse_rejected = 0;
+  }
+  c->stats = RmtrStatistics{};
+  c->stats.levels.resize(c->levels.size());
+  PetscCall(top.tr->start(tao->solution));
+  PetscReal delta = c->delta0;
+  tao->reason = TAO_CONTINUE_ITERATING;
+  if (!top.tr->finite()) {  // nothing to iterate on: say so instead of producing NaN
+    tao->reason = TAO_DIVERGED_NAN;
+    tao->fc = top.tr->value();
+    tao->residual = top.tr->gradient_norm();
+    PetscCall(collect_statistics(*c));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(
+      TaoLogConvergenceHistory(tao, top.tr->value(), top.tr->gradient_norm(), 0.0, tao->ksp_its));
+  PetscCall(TaoMonitor(tao, tao->niter, top.tr->value(), top.tr->gradient_norm(), 0.0, delta));
+  PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
+  Vec previous;
+  PetscCall(VecDuplicate(tao->solution, &previous));
+  while (tao->reason == TAO_CONTINUE_ITERATING) {
+    PetscReal xnorm;
+    PetscCall(VecNorm(top.tr->solution(), NORM_2, &xnorm));
+    if (delta < c->min_radius * std::max<PetscReal>(1.0, xnorm)) {
+      tao->reason = TAO_DIVERGED_TR_REDUCTION;
+      break;
+    }
+    const PetscReal f_old = top.tr->value();
+    PetscCall(VecCopy(top.tr->solution(), previous));
+    c->cycle_accepted = c->cycle_rejected = 0;
+    std::vector<long> successful(c->levels.size(), 0);
+    PetscCall(cycle(tao, *c, L, PETSC_INFINITY, &delta, successful));
+    for (int l = 0; l <= L; ++l) c->stats.levels[l].successful += successful[l];
+    ++c->stats.cycles;
+    ++tao->niter;
+    PetscCall(VecCopy(top.tr->solution(), tao->solution));
+    PetscCall(VecCopy(top.tr->gradient(), tao->gradient));
+    const PetscReal f = top.tr->value(), gnorm = top.tr->gradient_norm();
+    if (c->monitor)
+      PetscCall(PetscPrintf(PetscObjectComm((PetscObject)tao),
+                            "  rmtr cycle %4" PetscInt_FMT "  f % .12e  |g| %.4e  delta %.3e  "
+                            "coarse corrections %ld accepted, %ld rejected\n",
+                            tao->niter, (double)f, (double)gnorm, (double)delta, c->cycle_accepted,
+                            c->cycle_rejected));
+    PetscCall(TaoLogConvergenceHistory(tao, f, gnorm, 0.0, tao->ksp_its));
+    PetscCall(TaoMonitor(tao, tao->niter, f, gnorm, 0.0, delta));
+    PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
+    // Eq. (7.1), second part: Newton-like regime and no more progress in floating point.
+    if (tao->reason == TAO_CONTINUE_ITERATING && delta > 1e15 && f < f_old) {
+      PetscReal dx;
+      PetscCall(VecAXPY(previous, -1.0, top.tr->solution()));
+      PetscCall(VecNorm(previous, NORM_2, &dx));
+      if (f_old - f < c->stagnation || dx < c->stagnation) tao->reason = TAO_CONVERGED_STEPTOL;
+    }
+  }
+  PetscCall(VecDestroy(&previous));
+  PetscCall(collect_statistics(*c));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
+  auto* c = static_cast<RmtrContext*>(tao->data);
+  PetscFunctionBeginUser;
+  PetscOptionsHeadBegin(PetscOptionsObject, "Recursive multilevel trust region (paper Alg. 4.2)");
+  PetscCall(PetscOptionsInt("-tao_rmtr_levels", "number of levels (0: all)", "",
+                            c->requested_levels, &c->requested_levels, nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_mu1", "pre-smoothing steps", "", c->mu1, &c->mu1, nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_mu2", "post-smoothing steps", "", c->mu2, &c->mu2, nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_coarse_max_it", "steps on the coarsest level (-1: mu1+mu2)",
+                            "", c->coarse_max_it, &c->coarse_max_it, nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_stcg_max_it", "STCG iterations per smoothing step", "",
+                            c->stcg_max_it, &c->stcg_max_it, nullptr));
+  PetscCall(PetscOptionsEnum("-tao_rmtr_projection", "projection of iterates to coarser levels", "",
+                             kProjectionNames, static_cast<PetscEnum>(c->projection),
+                             reinterpret_cast<PetscEnum*>(&c->projection), nullptr));
+  PetscCall(PetscOptionsEnum("-tao_rmtr_smoother_qp", "QP solver above the coarsest level", "",
+                             kQpNames, static_cast<PetscEnum>(c->smoother_qp),
+                             reinterpret_cast<PetscEnum*>(&c->smoother_qp), nullptr));
+  PetscCall(PetscOptionsEnum("-tao_rmtr_coarse_qp", "QP solver on the coarsest level", "", kQpNames,
+                             static_cast<PetscEnum>(c->coarse_qp),
+                             reinterpret_cast<PetscEnum*>(&c->coarse_qp), nullptr));
+  PetscCall(
+      PetscOptionsReal("-tao_rmtr_delta0", "initial radius", "", c->delta0, &c->delta0, nullptr));
+  PetscCall(trust_region_parameter_options(PetscOptionsObject, "-tao_rmtr_", &c->params));
+  PetscCall(PetscOptionsReal("-tao_rmtr_eps_delta", "coarse-correction threshold (Alg. 4.3)", "",
+                             c->eps_delta, &c->eps_delta, nullptr));
+  PetscCall(PetscOptionsReal("-tao_rmtr_stagnation", "eq. (7.1) floor on |df| and |dx|", "",
+                             c->stagnation, &c->stagnation, nullptr));
+  PetscCall(PetscOptionsReal("-tao_rmtr_min_radius", "relative radius at which the solve stops", "",
+                             c->min_radius, &c->min_radius, nullptr));
+  PetscCall(PetscOptionsBool("-tao_rmtr_monitor", "one line per V-cycle", "", c->monitor,
+                             &c->monitor, nullptr));
+  PetscOptionsHeadEnd();
+  MPI_Comm comm = PetscObjectComm((PetscObject)tao);
+  PetscCall(c->params.validate(comm, "-tao_type rmtr"));
+  PetscCheck(c->requested_levels >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_levels: must be >= 1 (or 0 for all levels), got %" PetscInt_FMT,
+             c->requested_levels);
+  PetscCheck(c->mu1 >= 0 && c->mu2 >= 0 && c->mu1 + c->mu2 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_mu1/-tao_rmtr_mu2: need non-negative counts with mu1 + mu2 >= 1, got "
+             "%" PetscInt_FMT " and %" PetscInt_FMT,
+             c->mu1, c->mu2);
+  if (c->coarse_max_it < 0) c->coarse_max_it = c->mu1 + c->mu2;
+  PetscCheck(c->coarse_max_it >= 1 && c->stcg_max_it >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_coarse_max_it and -tao_rmtr_stcg_max_it must be >= 1");
+  PetscCheck(c->delta0 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_delta0: must be positive, got %g", (double)c->delta0);
+  PetscCheck(c->eps_delta > 0 && c->eps_delta < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_eps_delta: must lie in (0, 1), got %g", (double)c->eps_delta);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode view(Tao tao, PetscViewer viewer) {
+  auto* c = static_cast<RmtrContext*>(tao->data);
+  PetscFunctionBeginUser;
+  const int n = c->levels.empty()
+                    ? (c->requested_levels > 0 ? static_cast<int>(c->requested_levels)
+                                               : (c->hierarchy ? c->hierarchy->num_levels() : 1))
+                    : static_cast<int>(c->levels.size());
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT
+                                   ", mu2 = %" PetscInt_FMT ", coarsest %" PetscInt_FMT
+                                   " step(s) of %s, smoother %s (%" PetscInt_FMT " iterations), "
+                                   "projection %s\n",
+                                   n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1,
+                                   c->mu2, c->coarse_max_it, kQpNames[c->coarse_qp],
+                                   kQpNames[c->smoother_qp], c->stcg_max_it,
+                                   kProjectionNames[c->projection]));
+  PetscCall(PetscViewerASCIIPrintf(
+      viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",
+      (double)c->delta0, (double)c->params.eta1, (double)c->params.eta2, (double)c->params.gamma1,
+      (double)c->params.gamma2, (double)c->eps_delta));
+  if (c->stats.cycles > 0) {
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer,
+        "  level       dofs  successful  assemblies   QP solves  objectives  coarse +/-\n"));
+    for (int l = static_cast<int>(c->stats.levels.size()) - 1; l >= 0; --l) {
+      const RmtrLevelStatistics& s = c->stats.levels[l];
+      PetscCall(PetscViewerASCIIPrintf(
+          viewer, "  %5d %10" PetscInt_FMT " %11ld %11ld %11ld %11ld  %ld/%ld\n", l, s.dofs,
+          s.successful, s.assemblies, s.qp_solves, s.objectives, s.coarse_accepted,
+          s.coarse_rejected));
+    }
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer,
+        "  %ld V-cycles; work units (eq. 7.3-7.4): assembly %.1f (%.2f per cycle), QP %.1f "
+        "(%.2f per cycle)\n",
+        c->stats.cycles, c->stats.assembly_work_units,
+        c->stats.assembly_work_units / c->stats.cycles, c->stats.qp_work_units,
+        c->stats.qp_work_units / c->stats.cycles));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode destroy(Tao tao) {
+  auto* c = static_cast<RmtrContext*>(tao->data);
+  PetscFunctionBeginUser;
+  destroy_levels(*c);
+  delete c;
+  tao->data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode create(Tao tao) {
+  PetscFunctionBeginUser;
+  tao->data = new RmtrContext();
+  tao->ops->setup = setup;
+  tao->ops->solve = solve;
+  tao->ops->setfromoptions = set_from_options;
+  tao->ops->view = view;
+  tao->ops->destroy = destroy;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode check_type(Tao tao) {
+  PetscBool is_rmtr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(tao), "rmtr", &is_rmtr));
+  PetscCheck(is_rmtr, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "not an rmtr solver");
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
+  if (levels.empty()) levels.resize(o.levels.size());
+  for (size_t l = 0; l < std::min(levels.size(), o.levels.size()); ++l) {
+    RmtrLevelStatistics& a = levels[l];
+    const RmtrLevelStatistics& b = o.levels[l];
+    a.dofs = b.dofs;
+    a.successful += b.successful;
+    a.assemblies += b.assemblies;
+    a.qp_solves += b.qp_solves;
+    a.objectives += b.objectives;
+    a.coarse_accepted += b.coarse_accepted;
+    a.coarse_rejected += b.coarse_rejected;
+  }
+  cycles += o.cycles;
+  assembly_work_units += o.assembly_work_units;
+  qp_work_units += o.qp_work_units;
+  return *this;
+}
+
+PetscErrorCode register_rmtr_tao_type() { return TaoRegister("rmtr", create); }
+
+PetscErrorCode rmtr_set_levels(Tao tao, MultilevelObjective* levels) {
+  PetscFunctionBeginUser;
+  PetscCall(check_type(tao));
+  auto* c = static_cast<RmtrContext*>(tao->data);
+  destroy_levels(*c);
+  c->hierarchy = levels;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode rmtr_statistics(Tao tao, RmtrStatistics* stats) {
+  PetscFunctionBeginUser;
+  PetscCall(check_type(tao));
+  *stats = static_cast<RmtrContext*>(tao->data)->stats;
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell
