@@ -72,7 +72,7 @@ struct RmtrContext {
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0;
   PetscReal delta0 = 1.0, eps_delta = 1e-3, stagnation = 1e-12, min_radius = 1e-14;
-  PetscBool monitor = PETSC_FALSE;
+  PetscBool monitor = PETSC_FALSE, check_consistency = PETSC_FALSE;
   TrustRegionParameters params;
   std::unique_ptr<TaoObjective> finest;
   std::vector<Level> levels;
@@ -244,6 +244,13 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
     PetscCall(lc.model->initialize(lc.x0, lc.restricted, &f0));
     PetscCall(lc.tr->start(lc.x0, &f0, lc.restricted));
     attempted = lc.tr->finite();  // a projected state outside the material's domain: skip
+    if (attempted && c.check_consistency) {  // eq. (4.5): ∇h^{l−1}(x₀) = R ∇h^l
+      PetscReal h0, error;
+      PetscCall(lc.model->objective(lc.x0, &h0, lc.scratch));
+      PetscCall(VecAXPY(lc.scratch, -1.0, lc.restricted));
+      PetscCall(VecNorm(lc.scratch, NORM_2, &error));
+      c.stats.max_consistency_error = std::max<double>(c.stats.max_consistency_error, error / rg);
+    }
   }
   if (attempted) {
     std::vector<long> coarse_successful(successful.size(), 0);
@@ -255,6 +262,8 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       PetscCall(VecWAXPY(lc.scratch, -1.0, lc.x0, lc.tr->solution()));  // coarse correction
       PetscCall(MatMult(c.hierarchy->prolongation(c.offset + l - 1), lc.scratch, lv.correction));
       PetscCall(lv.tr->level_norm(lv.correction, &step_norm));
+      c.stats.max_correction_ratio =
+          std::max<double>(c.stats.max_correction_ratio, step_norm / *delta);
       PetscCall(VecWAXPY(lv.trial, 1.0, lv.correction, lv.tr->solution()));
       PetscReal ft;
       PetscCall(lv.objective->objective(lv.trial, &ft, nullptr));
@@ -402,6 +411,9 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                              c->min_radius, &c->min_radius, nullptr));
   PetscCall(PetscOptionsBool("-tao_rmtr_monitor", "one line per V-cycle", "", c->monitor,
                              &c->monitor, nullptr));
+  PetscCall(PetscOptionsBool("-tao_rmtr_check_consistency",
+                             "check eq. (4.5) at every coarse start (one more gradient each)", "",
+                             c->check_consistency, &c->check_consistency, nullptr));
   PetscOptionsHeadEnd();
   MPI_Comm comm = PetscObjectComm((PetscObject)tao);
   PetscCall(c->params.validate(comm, "-tao_type rmtr"));
@@ -508,6 +520,8 @@ RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
     a.coarse_rejected += b.coarse_rejected;
   }
   cycles += o.cycles;
+  max_correction_ratio = std::max(max_correction_ratio, o.max_correction_ratio);
+  max_consistency_error = std::max(max_consistency_error, o.max_consistency_error);
   assembly_work_units += o.assembly_work_units;
   qp_work_units += o.qp_work_units;
   return *this;

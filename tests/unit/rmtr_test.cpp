@@ -1,0 +1,198 @@
+// RMTR (TAO type "rmtr", paper Alg. 4.2/4.3) on real scenes: the same minimiser as the
+// single-level trust region, the theory's invariants (4.5) and (4.7), monotone energy per
+// V-cycle, work accounting, and the level options.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "mlshell/multilevel_problem.hpp"
+#include "mlshell/step_solver.hpp"
+#include "mlshell/trust_region.hpp"
+#include "physics_fixtures.hpp"
+
+using namespace mlshell;
+
+namespace {
+
+/// Sets PETSc options for the lifetime of the object.
+struct ScopedOptions {
+  std::vector<std::string> names;
+  explicit ScopedOptions(std::initializer_list<std::pair<const char*, const char*>> options) {
+    for (const auto& [name, value] : options) {
+      PetscOptionsSetValue(nullptr, name, value);
+      names.emplace_back(name);
+    }
+  }
+  ~ScopedOptions() {
+    for (const auto& n : names) PetscOptionsClearValue(nullptr, n.c_str());
+  }
+};
+
+Scene example(const char* file, int refine, int steps) {
+  Scene s = parse_scene(std::filesystem::path(MLSHELL_SOURCE_DIR) / "examples" / file);
+  s.geometry.refine = refine;
+  s.time.steps = steps;
+  return s;
+}
+
+struct Outcome {
+  int status = -1;
+  double energy = 0.0;
+  std::vector<double> u;
+  long iterations = 0;
+  RmtrStatistics rmtr;
+};
+
+Outcome solve(const Scene& scene, const std::string& tag) {
+  const auto dir = std::filesystem::temp_directory_path() / ("mlshell_rmtr_" + tag);
+  SolvedScene solved = solve_scene(scene, PETSC_COMM_SELF, dir);
+  Outcome out;
+  out.status = solved.status;
+  out.u = solved.displacement;
+  out.iterations = solved.simulation->iterations();
+  out.rmtr = solved.simulation->rmtr_totals();
+  solved.simulation->problem().objective(solved.simulation->displacement(), &out.energy, nullptr);
+  std::filesystem::remove_all(dir);
+  return out;
+}
+
+double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+  return d;
+}
+
+double max_abs(const std::vector<double>& a) {
+  double m = 0.0;
+  for (double x : a) m = std::max(m, std::abs(x));
+  return m;
+}
+
+}  // namespace
+
+TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
+  // Trampoline refined twice (1,083 dofs, levels 147 / 363 / 1,083) and the clamped plate.
+  for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
+    const Scene scene = example(file, 2, 1);
+    Outcome tr;
+    {
+      ScopedOptions o({{"-tao_type", "tr"}});
+      tr = solve(scene, "tr");
+    }
+    ASSERT_EQ(tr.status, 0) << file;
+    for (const char* levels : {"2", "3"}) {
+      ScopedOptions o({{"-tao_rmtr_levels", levels}, {"-tao_rmtr_check_consistency", "1"}});
+      const Outcome rmtr = solve(scene, std::string("rmtr") + levels);
+      ASSERT_EQ(rmtr.status, 0) << file << ", " << levels << " levels";
+      ASSERT_EQ(rmtr.rmtr.levels.size(), static_cast<size_t>(std::stoi(levels)));
+      EXPECT_NEAR(rmtr.energy, tr.energy, 1e-10 * std::abs(tr.energy)) << file << " " << levels;
+      EXPECT_LT(max_difference(rmtr.u, tr.u), 1e-6 * max_abs(tr.u)) << file << " " << levels;
+      // Eq. (4.7): prolongated corrections stay in the fine radius; eq. (4.5) holds to round-off
+      // (of ∇f^{l−1}(x₀) − ∇f^{l−1}(x₀), relative to the smaller ‖R∇h^l‖).
+      EXPECT_LE(rmtr.rmtr.max_correction_ratio, 1.0 + 1e-12) << file << " " << levels;
+      EXPECT_LT(rmtr.rmtr.max_consistency_error, 1e-8) << file << " " << levels;
+    }
+  }
+}
+
+TEST(Rmtr, CoarseLevelsDoTheWorkAndTheAccountsAddUp) {
+  const Scene scene = example("trampoline.yaml", 2, 1);
+  ScopedOptions o({{"-tao_rmtr_monitor", "0"}});
+  const Outcome r = solve(scene, "work");
+  ASSERT_EQ(r.status, 0);
+  const RmtrStatistics& s = r.rmtr;
+  ASSERT_EQ(s.levels.size(), 3u);
+  EXPECT_EQ(s.cycles, r.iterations);
+  EXPECT_EQ(s.levels[0].dofs, 147);
+  EXPECT_EQ(s.levels[2].dofs, 1083);
+  long accepted_corrections = 0;
+  for (size_t l = 0; l < s.levels.size(); ++l) {
+    // Every visit to a level assembles derivatives once and solves at least one QP there.
+    EXPECT_GT(s.levels[l].assemblies, 0) << l;
+    EXPECT_GE(s.levels[l].qp_solves, s.levels[l].successful - s.levels[l].coarse_accepted) << l;
+    accepted_corrections += s.levels[l].coarse_accepted;
+  }
+  EXPECT_GT(accepted_corrections, 0);
+  EXPECT_GT(s.levels[0].successful, 0);  // coarsest steps that survived to the finest level
+  // Eq. (7.3): W = Σ 4^-(L-l) Q^l.
+  double w = 0.0;
+  for (int l = 0; l < 3; ++l) w += std::ldexp(1.0, -2 * (2 - l)) * s.levels[l].assemblies;
+  EXPECT_DOUBLE_EQ(s.assembly_work_units, w);
+}
+
+TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
+  // Record f after every V-cycle through TAO's convergence history.
+  const Scene scene = example("trampoline.yaml", 2, 1);
+  SubdivisionHierarchy sub(build_cage(scene.geometry), 2);
+  LevelHierarchy levels(PETSC_COMM_SELF, sub, 0, 3);
+  MultilevelProblem problem(scene, levels, CageFrame::from(scene.geometry));
+  Vec u, v;
+  levels.layout(2).create_vector(&u);
+  VecDuplicate(u, &v);
+  problem.synchronize(scene.time.dt, u, v);
+  StepSolver solver(problem.level(2), &problem);
+  ASSERT_EQ(solver.type(), "rmtr");
+  TaoSetConvergenceHistory(solver.tao(), nullptr, nullptr, nullptr, nullptr, PETSC_DECIDE,
+                           PETSC_TRUE);
+  SolveReport report;
+  ASSERT_EQ(solver.solve(u, report), 0);
+  EXPECT_TRUE(report.converged) << report.reason;
+  PetscReal* f;
+  PetscInt n;
+  TaoGetConvergenceHistory(solver.tao(), &f, nullptr, nullptr, nullptr, &n);
+  ASSERT_GE(n, 2);
+  for (PetscInt i = 1; i < n; ++i) EXPECT_LE(f[i], f[i - 1]) << "V-cycle " << i;
+  VecDestroy(&u);
+  VecDestroy(&v);
+}
+
+TEST(Rmtr, ProjectionsAndPaperSmootherReachTheSameMinimiser) {
+  // Reverse subdivision (default), least squares and scaled restriction as P (eq. 4.6); and the
+  // paper's ten STCG iterations as smoother on the (small) plate.
+  const Scene scene = example("plate.yaml", 2, 1);
+  const Outcome reference = solve(scene, "reference");
+  ASSERT_EQ(reference.status, 0);
+  for (const char* projection : {"lsq", "restriction"}) {
+    ScopedOptions o({{"-tao_rmtr_projection", projection}});
+    const Outcome r = solve(scene, projection);
+    ASSERT_EQ(r.status, 0) << projection;
+    EXPECT_NEAR(r.energy, reference.energy, 1e-10 * std::abs(reference.energy)) << projection;
+  }
+  ScopedOptions o({{"-tao_rmtr_smoother_qp", "stcg"}, {"-rmtr_levels_2_ksp_max_it", "10"}});
+  const Outcome stcg = solve(scene, "stcg");
+  ASSERT_EQ(stcg.status, 0);
+  // The plate's energy is tiny (2e-6 J): gatol 1e-7 leaves a relative 1e-6 in it.
+  EXPECT_NEAR(stcg.energy, reference.energy, 1e-6 * std::abs(reference.energy));
+}
+
+TEST(Rmtr, RejectsNonsenseOptionsWithTheirNames) {
+  const Scene scene = example("plate.yaml", 1, 1);
+  SubdivisionHierarchy sub(build_cage(scene.geometry), 1);
+  LevelHierarchy levels(PETSC_COMM_SELF, sub, 0, 3);
+  MultilevelProblem problem(scene, levels, CageFrame::from(scene.geometry));
+  Tao tao;
+  register_trust_region_tao_types();
+  for (auto [name, value] : {std::pair{"-tao_rmtr_eta1", "0.9"},
+                             {"-tao_rmtr_eps_delta", "2"},
+                             {"-tao_rmtr_mu1", "-1"}}) {
+    TaoCreate(PETSC_COMM_SELF, &tao);
+    TaoSetType(tao, "rmtr");
+    PetscOptionsSetValue(nullptr, name, value);
+    PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+    EXPECT_NE(TaoSetFromOptions(tao), 0) << name << " " << value;
+    PetscPopErrorHandler();
+    PetscOptionsClearValue(nullptr, name);
+    TaoDestroy(&tao);
+  }
+  // More levels than the hierarchy has.
+  ScopedOptions o({{"-tao_rmtr_levels", "5"}});
+  StepSolver solver(problem.level(1), &problem);
+  Vec u;
+  levels.layout(1).create_vector(&u);
+  SolveReport report;
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  EXPECT_NE(solver.solve(u, report), 0);
+  PetscPopErrorHandler();
+  VecDestroy(&u);
+}
