@@ -76,6 +76,8 @@ PetscErrorCode DoglegQp::factor() {
     for (int k = 0; k < 12 && (factor_failed_ || indefinite_) && norm > 0; ++k, lambda *= 10) {
       PetscCall(MatCopy(H_, shifted_, SAME_NONZERO_PATTERN));
       PetscCall(MatShift(shifted_, lambda));
+      // After a failed factorisation MUMPS must start over (symbolic phase included).
+      if (factor_failed_ && active_ == ksp_shifted_) PetscCall(KSPReset(ksp_shifted_));
       active_ = ksp_shifted_;
       PetscCall(KSPSetOperators(active_, shifted_, shifted_));
       PetscCall(factor_operator());
@@ -89,7 +91,7 @@ PetscErrorCode DoglegQp::factor_operator() {
   PetscFunctionBeginUser;
   PC pc;
   PCType type;
-  PetscCall(KSPGetPC(ksp_, &pc));
+  PetscCall(KSPGetPC(active_, &pc));
   PetscCall(PCGetType(pc, &type));
   const bool cholesky = type && std::string(type) == PCCHOLESKY;
   MatSolverType package = nullptr;

@@ -93,6 +93,28 @@ TEST(TrustRegionQp, DoglegHandlesAnIndefiniteHessian) {
   EXPECT_GT(r.model_decrease, 0.0);
 }
 
+TEST(TrustRegionQp, DoglegUsesAShiftedNewtonPointWhenItBeatsTheCauchyPoint) {
+  // H = diag(1, 4, −0.001), g = (1, 1, 0.001): positive curvature along g, one small negative
+  // eigenvalue. Cauchy: m = −0.4. The Newton point of H + λI (λ = 4e-3, the first tenfold shift
+  // that is positive definite) gives m ≈ −0.62: taken, inside the region, and finite.
+  SmallModel m({1.0, 4.0, -0.001}, {1.0, 1.0, 0.001});
+  DoglegQp qp(PETSC_COMM_SELF, "test_dogleg_shift_");
+  ASSERT_EQ(qp.set_operator(m.H), 0);
+  QpResult r;
+  ASSERT_EQ(qp.solve(m.g, 100.0, m.s, r), 0);
+  EXPECT_STREQ(r.kind, "shifted");
+  EXPECT_TRUE(std::isfinite(r.step_norm));
+  EXPECT_GT(r.model_decrease, 0.6);
+  PetscReal model;
+  quadratic_model(m.H, m.g, m.s, &model);
+  EXPECT_NEAR(r.model_decrease, -model, 1e-14);
+  EXPECT_TRUE(m.sufficient_decrease(r, 100.0));
+  // A small region: the dogleg path of the shifted point, cut at the boundary.
+  ASSERT_EQ(qp.solve(m.g, 0.8, m.s, r), 0);
+  EXPECT_NEAR(r.step_norm, 0.8, 1e-12);
+  EXPECT_TRUE(m.sufficient_decrease(r, 0.8));
+}
+
 TEST(TrustRegionQp, SteihaugTointStopsOnNegativeCurvatureAtTheBoundary) {
   SmallModel m({1.0, -2.0, 3.0}, {0.3, 0.5, -0.2});
   SteihaugTointQp qp(PETSC_COMM_SELF, "test_stcg_", 10);
