@@ -8,4 +8,13 @@ namespace mlshell {
 
 PetscErrorCode register_rmtr_tao_type();
 
+/// Raises PETSC_ERR_ARG_WRONG unless `tao` is of the given type (for type-specific accessors).
+inline PetscErrorCode require_tao_type(Tao tao, const char* type) {
+  PetscBool same;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(tao), type, &same));
+  PetscCheck(same, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "not a %s solver", type);
+  PetscFunctionReturn(0);
+}
+
 }  // namespace mlshell

@@ -496,14 +496,6 @@ PetscErrorCode create(Tao tao) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode check_type(Tao tao) {
-  PetscBool is_rmtr;
-  PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(tao), "rmtr", &is_rmtr));
-  PetscCheck(is_rmtr, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "not an rmtr solver");
-  PetscFunctionReturn(0);
-}
-
 }  // namespace
 
 RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
@@ -531,7 +523,7 @@ PetscErrorCode register_rmtr_tao_type() { return TaoRegister("rmtr", create); }
 
 PetscErrorCode rmtr_set_levels(Tao tao, MultilevelObjective* levels) {
   PetscFunctionBeginUser;
-  PetscCall(check_type(tao));
+  PetscCall(require_tao_type(tao, "rmtr"));
   auto* c = static_cast<RmtrContext*>(tao->data);
   destroy_levels(*c);
   c->hierarchy = levels;
@@ -540,7 +532,7 @@ PetscErrorCode rmtr_set_levels(Tao tao, MultilevelObjective* levels) {
 
 PetscErrorCode rmtr_statistics(Tao tao, RmtrStatistics* stats) {
   PetscFunctionBeginUser;
-  PetscCall(check_type(tao));
+  PetscCall(require_tao_type(tao, "rmtr"));
   *stats = static_cast<RmtrContext*>(tao->data)->stats;
   PetscFunctionReturn(0);
 }

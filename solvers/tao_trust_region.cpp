@@ -176,10 +176,8 @@ PetscErrorCode register_trust_region_tao_types() {
 }
 
 PetscErrorCode trust_region_statistics(Tao tao, TrustRegionStatistics* stats) {
-  PetscBool is_tr;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(tao), "tr", &is_tr));
-  PetscCheck(is_tr, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "not a tr solver");
+  PetscCall(require_tao_type(tao, "tr"));
   *stats = static_cast<TrContext*>(tao->data)->stats;
   PetscFunctionReturn(0);
 }
