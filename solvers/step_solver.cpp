@@ -1,6 +1,7 @@
 // TAO as the step solver (see step_solver.hpp for the defaults).
 #include "mlshell/step_solver.hpp"
 
+#include <stdexcept>
 #include <string>
 
 namespace mlshell {
@@ -19,6 +20,20 @@ PetscErrorCode hessian(Tao, Vec u, Mat H, Mat, void* ctx) {
   return static_cast<LevelProblem*>(ctx)->hessian(u, H);
 }
 
+/// SNES residual F(u) = ∇f(u); a trial point outside the material's domain (f = +inf) is a
+/// domain error, which makes newtonls's line search shorten the step.
+PetscErrorCode gradient_residual(SNES snes, Vec u, Vec g, void* ctx) {
+  PetscReal f;
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<LevelProblem*>(ctx)->objective(u, &f, g));
+  if (f >= PETSC_INFINITY) PetscCall(SNESSetFunctionDomainError(snes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode hessian_jacobian(SNES, Vec u, Mat H, Mat, void* ctx) {
+  return static_cast<LevelProblem*>(ctx)->hessian(u, H);
+}
+
 /// Sets `name` to `value` unless the user already gave it (the command line wins).
 PetscErrorCode default_option(const char* name, const char* value) {
   PetscBool set;
@@ -30,7 +45,18 @@ PetscErrorCode default_option(const char* name, const char* value) {
 
 }  // namespace
 
+bool uses_snes() {
+  char kind[64] = "tao";
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetString(nullptr, nullptr, "-mlshell_step_solver",
+                                                         kind, sizeof kind, nullptr));
+  const std::string k = kind;
+  if (k != "tao" && k != "snes")
+    throw std::invalid_argument("-mlshell_step_solver: must be tao or snes; got '" + k + "'");
+  return k == "snes";
+}
+
 std::string step_solver_type() {
+  if (uses_snes()) return "snes";
   char type[256] = "rmtr";
   PetscCallAbort(PETSC_COMM_WORLD,
                  PetscOptionsGetString(nullptr, nullptr, "-tao_type", type, sizeof type, nullptr));
@@ -39,6 +65,24 @@ std::string step_solver_type() {
 
 StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : problem_(problem) {
   MPI_Comm comm = problem.layout().comm();
+  PetscCallAbort(comm, problem.create_matrix(&H_));
+  if (uses_snes()) {
+    PetscCallAbort(comm, default_option("-snes_type", "newtonls"));
+    PetscCallAbort(comm, default_option("-snes_atol", "1e-7"));
+    PetscCallAbort(comm, default_option("-snes_rtol", "1e-10"));
+    PetscCallAbort(comm, default_option("-snes_stol", "0"));
+    PetscCallAbort(comm, default_option("-snes_max_it", "1000"));
+    PetscCallAbort(comm, default_option("-snes_max_funcs", "1000000"));
+    PetscCallAbort(comm, default_option("-ksp_type", "preonly"));
+    PetscCallAbort(comm, default_option("-pc_type", "lu"));
+    PetscCallAbort(comm, default_option("-pc_factor_mat_solver_type", "mumps"));
+    PetscCallAbort(comm, SNESCreate(comm, &snes_));
+    PetscCallAbort(comm, MatCreateVecs(H_, &residual_, nullptr));
+    PetscCallAbort(comm, SNESSetFunction(snes_, residual_, gradient_residual, &problem_));
+    PetscCallAbort(comm, SNESSetJacobian(snes_, H_, H_, hessian_jacobian, &problem_));
+    PetscCallAbort(comm, SNESSetFromOptions(snes_));
+    return;
+  }
   PetscCallAbort(comm, default_option("-tao_type", "rmtr"));
   PetscCallAbort(comm, default_option("-tao_gatol", "1e-7"));
   PetscCallAbort(comm, default_option("-tao_gttol", "1e-10"));
@@ -51,7 +95,6 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
   PetscCallAbort(comm, register_trust_region_tao_types());
   PetscCallAbort(comm, register_newton_baseline_tao_types());
   PetscCallAbort(comm, TaoCreate(comm, &tao_));
-  PetscCallAbort(comm, problem.create_matrix(&H_));
   PetscCallAbort(comm,
                  TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &problem_));
   PetscCallAbort(comm, TaoSetObjective(tao_, objective_only, &problem_));
@@ -75,17 +118,44 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
 
 StepSolver::~StepSolver() {
   TaoDestroy(&tao_);
+  SNESDestroy(&snes_);
+  VecDestroy(&residual_);
   MatDestroy(&H_);
 }
 
 std::string StepSolver::type() const {
+  if (snes_) {
+    SNESType t;
+    SNESGetType(snes_, &t);
+    return std::string("snes-") + (t ? t : "");
+  }
   TaoType t;
   TaoGetType(tao_, &t);
   return t ? t : "";
 }
 
+PetscErrorCode StepSolver::solve_snes(Vec u, SolveReport& report) {
+  PetscFunctionBeginUser;
+  PetscCall(SNESSolve(snes_, nullptr, u));
+  SNESConvergedReason reason;
+  PetscInt its, lits;
+  PetscCall(SNESGetConvergedReason(snes_, &reason));
+  PetscCall(SNESGetIterationNumber(snes_, &its));
+  PetscCall(SNESGetLinearSolveIterations(snes_, &lits));
+  PetscReal f;
+  PetscCall(problem_.objective(u, &f, residual_));
+  PetscCall(VecNorm(residual_, NORM_2, &report.gradient_norm));
+  report.converged = reason > 0;
+  report.reason = SNESConvergedReasons[reason];
+  report.iterations = static_cast<int>(its);
+  report.linear_iterations = static_cast<int>(lits);
+  report.energy = f;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   PetscFunctionBeginUser;
+  if (snes_) PetscFunctionReturn(solve_snes(u, report));
   PetscCall(TaoSetSolution(tao_, u));
   PetscCall(TaoSolve(tao_));
   TaoConvergedReason reason;

@@ -12,16 +12,24 @@
 //   -mlshell_quiet               no per-step progress lines
 //   -mlshell_hierarchy_view      print the subdivision levels 0..refine and their transfers
 //   -mlshell_hierarchy_write DIR write each level's cage and limit surface (OBJ) to DIR
+//   -mlshell_condition           estimate cond₂ of the Hessian at the final state (at the
+//                                initial state with -mlshell_evaluate); see hessian_spectrum.hpp
+//   -mlshell_condition_steps <60> Lanczos steps of that estimate
+//   -mlshell_limit_csv K         write limit_surface.csv: the final limit surface sampled on a
+//                                (K+1)×(K+1) grid per element (reference point, displacement)
+// PETSc log stages (-log_view): Setup (levels, problems, solver), Solve, Output.
 #pragma once
 
 #include <petscvec.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mlshell/discretization.hpp"
 #include "mlshell/effect_builder.hpp"
+#include "mlshell/hessian_spectrum.hpp"
 #include "mlshell/level_hierarchy.hpp"
 #include "mlshell/multilevel_problem.hpp"
 #include "mlshell/parallel_layout.hpp"
@@ -37,6 +45,9 @@ struct SimulationOptions {
   bool quiet = false;
   bool hierarchy_view = false;
   std::string hierarchy_write;  ///< folder, empty: don't write
+  bool condition = false;
+  int condition_steps = 60;
+  int limit_csv_samples = 0;  ///< 0: no limit_surface.csv
   static SimulationOptions from_petsc_options();
 };
 
@@ -67,6 +78,8 @@ class Simulation {
   PetscErrorCode step(int n, SolveReport& report);
   PetscErrorCode write_frame(int n, double t, bool force, bool converged);
   PetscErrorCode write_summary(const std::string& status, const SolveReport* last);
+  PetscErrorCode estimate_condition();
+  PetscErrorCode write_limit_csv();
 
   MPI_Comm comm_;
   int rank_ = 0, size_ = 1;
@@ -86,9 +99,13 @@ class Simulation {
   std::vector<SurfacePoint> probes_;
   double wall_start_ = 0.0;
   long total_iterations_ = 0;
+  long total_linear_iterations_ = 0;
+  double solve_time_ = 0.0;  ///< seconds in the steps' solves (no setup, no output)
   RmtrStatistics rmtr_totals_;
   bool all_converged_ = true;
   int steps_done_ = 0;
+  std::optional<SpectrumEstimate> spectrum_;
+  PetscLogStage stage_setup_ = 0, stage_solve_ = 0, stage_output_ = 0;
 };
 
 /// Builds the level-0 cage with its ghost ring from the scene's geometry.

@@ -1,4 +1,6 @@
-// Solves one step's minimisation problem with a PETSc TAO solver (options prefix `-tao_`).
+// Solves one step's minimisation problem with a PETSc TAO solver (options prefix `-tao_`), or,
+// with -mlshell_step_solver snes, its first-order condition ∇f(u) = 0 with a PETSc SNES
+// (prefix `-snes_`, Jacobian = the Hessian).
 //
 // Defaults (all overridable from the command line or an options file, which win):
 //   -tao_type rmtr -tao_gatol 1e-7 (paper eq. 7.1) -tao_gttol 1e-10 -tao_grtol 0 -tao_max_it 1000
@@ -6,8 +8,13 @@
 // For the KSP of whichever Newton-type PETSc solver is chosen instead (prefix tao_bnk_ for
 // bntr/bnls/bqnkls..., tao_nls_ for nls, ...): ksp_type stcg, pc_type lu,
 // pc_factor_mat_solver_type mumps.
+// SNES defaults: -snes_type newtonls -snes_atol 1e-7 -snes_rtol 1e-10 (the TAO tolerances on
+// ‖∇f‖) -snes_stol 0 (a short Newton step is not convergence) -snes_max_it 1000, and a
+// MUMPS LU as its linear solver (-ksp_type preonly -pc_type lu); e.g. -ksp_type cg
+// -pc_type hypre for BoomerAMG.
 #pragma once
 
+#include <petscsnes.h>
 #include <petsctao.h>
 
 #include <string>
@@ -27,7 +34,8 @@ struct SolveReport {
   RmtrStatistics rmtr;  ///< for -tao_type rmtr
 };
 
-/// The TAO type a StepSolver will use: -tao_type if given, else the default "rmtr".
+/// The solver a StepSolver will use: "snes" with -mlshell_step_solver snes, else the TAO type
+/// (-tao_type if given, else the default "rmtr").
 std::string step_solver_type();
 
 class StepSolver {
@@ -40,12 +48,17 @@ class StepSolver {
 
   /// Minimises from the displacement in `u`, leaving the result there.
   PetscErrorCode solve(Vec u, SolveReport& report);
-  Tao tao() const { return tao_; }
+  Tao tao() const { return tao_; }  ///< null for SNES
+  /// The TAO type, or "snes-<type>" (e.g. snes-newtonls).
   std::string type() const;
 
  private:
+  PetscErrorCode solve_snes(Vec u, SolveReport& report);
+
   LevelProblem& problem_;
   Tao tao_ = nullptr;
+  SNES snes_ = nullptr;
+  Vec residual_ = nullptr;
   Mat H_ = nullptr;
 };
 

@@ -34,8 +34,16 @@ const char* kUsage =
     "  -mlshell_hierarchy_view     print the subdivision levels 0..refine: control points, dofs,\n"
     "                              extraordinary vertices, nonzeros/row and memory of S, R, Q\n"
     "  -mlshell_hierarchy_write DIR  each level's cage and limit surface as OBJ files in DIR\n"
-    "  -mlshell_dt DT, -mlshell_steps N, -mlshell_output_dir DIR\n"
-    "                              override the scene's time.dt, time.steps, output.dir\n"
+    "  -mlshell_dt DT, -mlshell_steps N, -mlshell_output_dir DIR, -mlshell_refine N\n"
+    "                              override the scene's time.dt, time.steps, output.dir,\n"
+    "                              geometry.refine\n"
+    "  -mlshell_condition          estimate cond_2 of the Hessian at the final state (initial\n"
+    "                              with -mlshell_evaluate): Lanczos on H and on H^-1 (MUMPS),\n"
+    "                              -mlshell_condition_steps N (default 60); into summary.json\n"
+    "  -mlshell_limit_csv K        write limit_surface.csv: the final limit surface on a\n"
+    "                              (K+1)x(K+1) grid per element (reference X,Y,Z; ux,uy,uz)\n"
+    "  -mlshell_step_solver snes   solve grad f = 0 with PETSc SNES (default newtonls, MUMPS LU;\n"
+    "                              -snes_*, -ksp_*, -pc_* options) instead of TAO\n"
     "  -options_file FILE          PETSc options from FILE (plain or .yaml); the scene may name\n"
     "                              one (solver.options_file); the command line wins over both\n"
     "\n"
@@ -109,6 +117,13 @@ int main(int argc, char** argv) {
       throw mlshell::SceneError("-mlshell_dt: must be a positive number; got '" +
                                 std::to_string(dt) + "'");
     scene.time.dt = dt;
+    PetscInt refine = scene.geometry.refine;
+    PetscCallAbort(PETSC_COMM_WORLD,
+                   PetscOptionsGetInt(nullptr, nullptr, "-mlshell_refine", &refine, nullptr));
+    if (refine < 0 || refine > 8)
+      throw mlshell::SceneError("-mlshell_refine: must be in 0..8; got '" + std::to_string(refine) +
+                                "'");
+    scene.geometry.refine = static_cast<int>(refine);
     mlshell::Simulation sim(PETSC_COMM_WORLD, std::move(scene),
                             mlshell::SimulationOptions::from_petsc_options());
     PetscCallAbort(PETSC_COMM_WORLD, sim.run(&status));

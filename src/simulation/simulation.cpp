@@ -16,6 +16,19 @@ namespace mlshell {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// A -log_view stage for the lifetime of the object (also when an exception leaves the scope).
+class LogStageScope {
+ public:
+  explicit LogStageScope(PetscLogStage stage) { PetscLogStagePush(stage); }
+  ~LogStageScope() { PetscLogStagePop(); }
+  LogStageScope(const LogStageScope&) = delete;
+  LogStageScope& operator=(const LogStageScope&) = delete;
+};
+
+}  // namespace
+
 SimulationOptions SimulationOptions::from_petsc_options() {
   SimulationOptions o;
   PetscBool flag = PETSC_FALSE;
@@ -42,6 +55,25 @@ SimulationOptions SimulationOptions::from_petsc_options() {
   if (gauss < 2 || gauss > 6)
     throw SceneError("-mlshell_gauss_points: must be in 2..6; got '" + std::to_string(gauss) + "'");
   o.gauss_points = static_cast<int>(gauss);
+  flag = PETSC_FALSE;
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_condition", &flag, nullptr));
+  o.condition = flag;
+  PetscInt n = o.condition_steps;
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetInt(nullptr, nullptr, "-mlshell_condition_steps", &n, nullptr));
+  if (n < 2 || n > 2000)
+    throw SceneError("-mlshell_condition_steps: must be in 2..2000; got '" + std::to_string(n) +
+                     "'");
+  o.condition_steps = static_cast<int>(n);
+  n = 0;
+  PetscBool has = PETSC_FALSE;
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetInt(nullptr, nullptr, "-mlshell_limit_csv", &n, &has));
+  if (has && (n < 1 || n > 64))
+    throw SceneError("-mlshell_limit_csv: samples per element edge must be in 1..64; got '" +
+                     std::to_string(n) + "'");
+  o.limit_csv_samples = static_cast<int>(n);
   return o;
 }
 
@@ -76,6 +108,16 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
   wall_start_ = MPI_Wtime();
+  PetscCallAbort(comm, PetscLogStageGetId("Setup", &stage_setup_));
+  if (stage_setup_ < 0) {
+    PetscCallAbort(comm, PetscLogStageRegister("Setup", &stage_setup_));
+    PetscCallAbort(comm, PetscLogStageRegister("Solve", &stage_solve_));
+    PetscCallAbort(comm, PetscLogStageRegister("Output", &stage_output_));
+  } else {
+    PetscCallAbort(comm, PetscLogStageGetId("Solve", &stage_solve_));
+    PetscCallAbort(comm, PetscLogStageGetId("Output", &stage_output_));
+  }
+  const LogStageScope setup(stage_setup_);
   frame_ = CageFrame::from(scene_.geometry);
   try {
     hierarchy_ =
@@ -191,6 +233,8 @@ PetscErrorCode Simulation::evaluate(int* status) {
                           energies[i]));
   PetscCall(PetscPrintf(comm_, "  energy %-14s % .10e\n  gradient norm         %.10e\n", "total",
                         static_cast<double>(f), static_cast<double>(gnorm)));
+  if (options_.condition) PetscCall(estimate_condition());
+  if (options_.limit_csv_samples > 0) PetscCall(write_limit_csv());
   PetscCall(write_summary("evaluated", nullptr));
   PetscCall(PetscPrintf(comm_, "mlshell: wrote %s\n", (output_->dir / "summary.json").c_str()));
   *status = 0;
@@ -204,7 +248,10 @@ PetscErrorCode Simulation::step(int n, SolveReport& report) {
   // Every level to time t, with the inertia predictor û = u_n + dt v_n (projected on the
   // coarse levels).
   PetscCall(multilevel_->synchronize(t, u_, v_));
-  PetscCall(solver_->solve(u_, report));
+  {
+    const LogStageScope solve(stage_solve_);
+    PetscCall(solver_->solve(u_, report));
+  }
   // v_{n+1} = (u_{n+1} − u_n) / dt
   PetscCall(VecWAXPY(v_, -1.0, u_prev_, u_));
   PetscCall(VecScale(v_, 1.0 / dt));
@@ -218,7 +265,10 @@ PetscErrorCode Simulation::run(int* status) {
     PetscCall(evaluate(status));
     PetscFunctionReturn(0);
   }
-  solver_ = std::make_unique<StepSolver>(*problem_, multilevel_.get());
+  {
+    const LogStageScope setup(stage_setup_);
+    solver_ = std::make_unique<StepSolver>(*problem_, multilevel_.get());
+  }
   PetscCall(
       PetscPrintf(comm_,
                   "mlshell: %s: %d dofs (%d elements, h = %.4g m) on %d rank(s), %d step(s) of "
@@ -247,6 +297,8 @@ PetscErrorCode Simulation::run(int* status) {
     PetscCall(step(n, report));
     const double wall = MPI_Wtime() - t0;
     total_iterations_ += report.iterations;
+    total_linear_iterations_ += report.linear_iterations;
+    solve_time_ += wall;
     rmtr_totals_ += report.rmtr;
     ++steps_done_;
     std::vector<double> energies;
@@ -271,8 +323,11 @@ PetscErrorCode Simulation::run(int* status) {
       row.emplace_back(wall);
       output_->csv->append(row);
     }
-    PetscCall(write_frame(n, n * scene_.time.dt, n == scene_.time.steps || !report.converged,
-                          report.converged));
+    {
+      const LogStageScope output(stage_output_);
+      PetscCall(write_frame(n, n * scene_.time.dt, n == scene_.time.steps || !report.converged,
+                            report.converged));
+    }
     if (!report.converged) {
       all_converged_ = false;
       PetscCall(
@@ -290,7 +345,12 @@ PetscErrorCode Simulation::run(int* status) {
       break;
     }
   }
-  PetscCall(write_summary(all_converged_ ? "complete" : "solver_failed", &report));
+  if (options_.condition) PetscCall(estimate_condition());
+  {
+    const LogStageScope output(stage_output_);
+    if (options_.limit_csv_samples > 0) PetscCall(write_limit_csv());
+    PetscCall(write_summary(all_converged_ ? "complete" : "solver_failed", &report));
+  }
   PetscCall(PetscPrintf(
       comm_, "mlshell: results in %s (summary.json%s%s%s)\n", fs::absolute(output_->dir).c_str(),
       csv ? ", steps.csv" : "",

@@ -3,6 +3,7 @@
 #include "simulation_output.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -50,6 +51,45 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Simulation::estimate_condition() {
+  PetscFunctionBeginUser;
+  Mat H;
+  PetscCall(problem_->create_matrix(&H));
+  PetscCall(problem_->hessian(u_, H));
+  SpectrumEstimate e;
+  PetscCall(estimate_spectrum(H, options_.condition_steps, &e));
+  PetscCall(MatDestroy(&H));
+  spectrum_ = e;
+  PetscCall(PetscPrintf(comm_,
+                        "mlshell: Hessian at the %s state: |lambda| in [%.6e, %.6e], cond_2 = %.6e "
+                        "(Lanczos, %d steps on H and on H^-1%s)\n",
+                        options_.evaluate_only ? "initial" : "final", std::abs(e.lambda_min),
+                        std::abs(e.lambda_max), e.condition, e.steps,
+                        e.converged ? "" : "; NOT settled: raise -mlshell_condition_steps"));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::write_limit_csv() {
+  PetscFunctionBeginUser;
+  std::vector<double> u;
+  PetscCall(layout_->gather_natural(u_, u));
+  if (rank_ == 0) {
+    const SurfaceSampler sampler(*disc_, options_.limit_csv_samples);
+    const SurfaceSample s = sampler.sample(u);
+    std::string text = "X,Y,Z,ux,uy,uz\n";
+    char line[256];
+    for (size_t i = 0; i + 2 < s.points.size(); i += 3) {
+      const double* x = &s.points[i];
+      const double* d = &s.displacement[i];
+      std::snprintf(line, sizeof line, "%.15e,%.15e,%.15e,%.15e,%.15e,%.15e\n", x[0] - d[0],
+                    x[1] - d[1], x[2] - d[2], d[0], d[1], d[2]);
+      text += line;
+    }
+    write_file_atomic(output_->dir / "limit_surface.csv", text);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Simulation::write_summary(const std::string& status, const SolveReport* last) {
   PetscFunctionBeginUser;
   std::vector<double> energies, u;
@@ -83,13 +123,16 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                           Json(Json::Object{{"reference", Json::array({X[0], X[1], X[2]})},
                                             {"displacement", Json::array(d)}}));
     }
-    Json::Object solver{{"type", Json(solver_ ? solver_->type() : std::string("none"))},
-                        {"iterations", Json(static_cast<long long>(total_iterations_))},
-                        {"converged", Json(all_converged_)},
-                        {"reason", Json(last ? last->reason : std::string("not run"))},
-                        {"objective_evaluations", Json(problem_->objective_evaluations())},
-                        {"hessian_evaluations", Json(problem_->hessian_evaluations())},
-                        {"inadmissible_trial_points", Json(problem_->inadmissible_evaluations())}};
+    Json::Object solver{
+        {"type", Json(solver_ ? solver_->type() : std::string("none"))},
+        {"iterations", Json(static_cast<long long>(total_iterations_))},
+        {"linear_iterations", Json(static_cast<long long>(total_linear_iterations_))},
+        {"solve_time", Json(solve_time_)},
+        {"converged", Json(all_converged_)},
+        {"reason", Json(last ? last->reason : std::string("not run"))},
+        {"objective_evaluations", Json(problem_->objective_evaluations())},
+        {"hessian_evaluations", Json(problem_->hessian_evaluations())},
+        {"inadmissible_trial_points", Json(problem_->inadmissible_evaluations())}};
     if (!rmtr_totals_.levels.empty()) {
       // Work of RMTR summed over the steps (paper eq. 7.2-7.4); level 0 is the coarsest.
       Json::Array levels;
@@ -107,17 +150,29 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                                     {"assembly_work_units", Json(rmtr_totals_.assembly_work_units)},
                                     {"qp_work_units", Json(rmtr_totals_.qp_work_units)}}));
     }
-    Json summary(Json::Object{{"scene", Json(scene_.name)},
-                              {"status", Json(status)},
-                              {"dofs", Json(disc_->num_dofs())},
-                              {"ranks", Json(size_)},
-                              {"steps", Json(steps_done_)},
-                              {"time", Json((steps_done_ + first_step_) * scene_.time.dt)},
-                              {"energy", Json(energy)},
-                              {"gradient_norm", Json(static_cast<double>(gnorm))},
-                              {"probes", Json(probes)},
-                              {"solver", Json(solver)},
-                              {"wall_time", Json(MPI_Wtime() - wall_start_)}});
+    Json::Object hessian;
+    if (spectrum_)
+      hessian = Json::Object{
+          {"lambda_min", Json(spectrum_->lambda_min)},
+          {"lambda_max", Json(spectrum_->lambda_max)},
+          {"condition", Json(spectrum_->condition)},
+          {"method", Json(std::string("Lanczos with full reorthogonalisation on H and on H^-1 "
+                                      "(MUMPS LDL^T), ") +
+                          std::to_string(spectrum_->steps) + " steps")},
+          {"settled", Json(spectrum_->converged)}};
+    Json::Object top{{"scene", Json(scene_.name)},
+                     {"status", Json(status)},
+                     {"dofs", Json(disc_->num_dofs())},
+                     {"ranks", Json(size_)},
+                     {"steps", Json(steps_done_)},
+                     {"time", Json((steps_done_ + first_step_) * scene_.time.dt)},
+                     {"energy", Json(energy)},
+                     {"gradient_norm", Json(static_cast<double>(gnorm))},
+                     {"probes", Json(probes)},
+                     {"solver", Json(solver)},
+                     {"wall_time", Json(MPI_Wtime() - wall_start_)}};
+    if (spectrum_) top.emplace_back("hessian", Json(hessian));
+    const Json summary(std::move(top));
     write_file_atomic(output_->dir / "summary.json", summary.dump() + "\n");
   }
   PetscFunctionReturn(0);

@@ -1,0 +1,148 @@
+"""PNG plots of the study CSVs (matplotlib, Agg backend). Each function returns the file name it
+wrote, or None when its CSV has nothing to plot."""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import paper  # noqa: E402
+from context import number  # noqa: E402
+
+MARKERS = "osD^v<>ph*"
+
+
+def _save(fig, out, name):
+    fig.tight_layout()
+    fig.savefig(out / name, dpi=110)
+    plt.close(fig)
+    return name
+
+
+def iterations(rows, out):
+    """Table 3/4 as curves: TR iterations vs dofs and RMTR V-cycles vs levels, with the paper's."""
+    if not rows:
+        return None
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for k, scene in enumerate(paper.SCENES):
+        color = f"C{k}"
+        tr = [(number(r["dofs"]), number(r["iterations"])) for r in rows
+              if r["scene"] == scene and r["solver"] == "tr" and r["converged"] == "1"]
+        if tr:
+            left.loglog(*zip(*tr), MARKERS[k] + "-", color=color, label=f"{scene} (mlshell)")
+        ref = [(d, i) for d, i in zip(paper.DOFS, paper.TR_ITERATIONS[scene]) if i]
+        left.loglog(*zip(*ref), MARKERS[k] + ":", color=color, alpha=0.5, mfc="none",
+                    label=f"{scene} (paper)")
+        rm = [(number(r["levels"]), number(r["iterations"])) for r in rows
+              if r["scene"] == scene and r["solver"] == "rmtr" and r["converged"] == "1"]
+        if rm:
+            right.semilogy(*zip(*rm), MARKERS[k] + "-", color=color, label=f"{scene} (mlshell)")
+        right.semilogy(paper.LEVELS, paper.RMTR_CYCLES[scene], MARKERS[k] + ":", color=color,
+                       alpha=0.5, mfc="none", label=f"{scene} (paper)")
+    left.set(xlabel="dofs", ylabel="TR iterations", title="Table 3: single-level TR, dt = 1")
+    right.set(xlabel="levels", ylabel="RMTR V-cycles", title="Table 4: RMTR, dt = 1")
+    left.legend(fontsize=6)
+    right.legend(fontsize=6)
+    return _save(fig, out, "iterations.png")
+
+
+def condition(rows, out):
+    dofs = [(number(r["dofs"]), number(r["condition"])) for r in rows
+            if r["sweep"] == "dofs" and number(r["condition"])]
+    beta = [(number(r["beta"]), number(r["condition"])) for r in rows
+            if r["sweep"] == "beta" and number(r["condition"])]
+    if not dofs and not beta:
+        return None
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    if dofs:
+        left.loglog(*zip(*dofs), "o-")
+    left.set(xlabel="dofs", ylabel="cond$_2$(H)", title="Fig. 9 left: trampoline, dt = 1")
+    if beta:
+        right.loglog(*zip(*beta), "s-")
+    right.set(xlabel=r"penalty $\beta$", ylabel="cond$_2$(H)", title="Fig. 9 right")
+    return _save(fig, out, "condition.png")
+
+
+def largest_timestep(table, out):
+    """Figure 10 as bars: the largest dt each solver converged at, per scene."""
+    if not table:
+        return None
+    scenes = sorted({s for s, _ in table})
+    solvers = sorted({v for _, v in table}, key=list(dict.fromkeys(v for _, v in table)).index)
+    fig, ax = plt.subplots(figsize=(9, 4))
+    width = 0.8 / max(1, len(solvers))
+    for j, solver in enumerate(solvers):
+        values = [table.get((s, solver)) or 0.0 for s in scenes]
+        ax.bar([i + j * width for i in range(len(scenes))], values, width, label=solver)
+    ax.set_yscale("log")
+    ax.set_ylim(1 / 48, 1.5)
+    ax.set_xticks([i + 0.4 - width / 2 for i in range(len(scenes))], scenes)
+    ax.set(ylabel="largest dt that converges [s]", title="Fig. 10: robustness vs dt")
+    ax.legend(fontsize=7)
+    return _save(fig, out, "timestep.png")
+
+
+def accuracy(rows, out, scene):
+    """Error against wall time for one scene; the Pareto front over every run as a line."""
+    pts = [r for r in rows if r["scene"] == scene and number(r["l2_error"]) is not None]
+    if not pts:
+        return None
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    for ax, column, label in ((axes[0], "l2_error", "limit surface L$^2$ error [m$^2$]"),
+                              (axes[1], "probe_error", "probe displacement error [m]")):
+        for k, solver in enumerate(dict.fromkeys(r["solver"] for r in pts)):
+            mine = [r for r in pts if r["solver"] == solver]
+            ax.loglog([number(r["wall_time"]) for r in mine],
+                      [max(number(r[column]), 1e-16) for r in mine], MARKERS[k % 10],
+                      label=solver, alpha=0.8)
+        front = pareto_front([(number(r["wall_time"]), max(number(r[column]), 1e-16))
+                              for r in pts])
+        ax.loglog(*zip(*front), "k-", lw=1, label="Pareto front")
+        ax.set(xlabel="wall time [s]", ylabel=label, title=f"{scene}: accuracy vs time")
+        ax.legend(fontsize=7)
+    return _save(fig, out, f"accuracy_{scene}.png")
+
+
+def pareto_front(points):
+    """The points no other point beats in both time and error, by increasing time."""
+    front, best = [], float("inf")
+    for t, e in sorted(points):
+        if e < best:
+            front.append((t, e))
+            best = e
+    return front
+
+
+def peers(rows, out):
+    ok = [r for r in rows if r["converged"] == "1" and number(r["wall_time"])]
+    if not ok:
+        return None
+    groups = list(dict.fromkeys((r["scene"], r["dofs"]) for r in ok))
+    solvers = list(dict.fromkeys(r["solver"] for r in rows))
+    fig, ax = plt.subplots(figsize=(10, 4))
+    width = 0.8 / len(solvers)
+    for j, solver in enumerate(solvers):
+        values = [next((number(r["wall_time"]) for r in ok if (r["scene"], r["dofs"]) == g
+                        and r["solver"] == solver), 0.0) for g in groups]
+        ax.bar([i + j * width for i in range(len(groups))], values, width, label=solver)
+    ax.set_yscale("log")
+    ax.set_xticks([i + 0.4 - width / 2 for i in range(len(groups))],
+                  [f"{s}\n{d} dofs" for s, d in groups])
+    ax.set(ylabel="wall time [s] (converged runs)", title="RMTR vs PETSc solvers, dt = 1")
+    ax.legend(fontsize=6, ncol=3)
+    return _save(fig, out, "peers.png")
+
+
+def parallel(rows, out):
+    ok = [r for r in rows if number(r["stage_solve"]) is not None]
+    if not ok:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4))
+    labels = [f"{r['scene']} {r['dofs']}\n{r['ranks']} rank(s)" for r in ok]
+    bottom = [0.0] * len(ok)
+    for stage in ("setup", "solve", "output"):
+        values = [number(r[f"stage_{stage}"], 0.0) for r in ok]
+        ax.bar(labels, values, bottom=bottom, label=stage)
+        bottom = [b + v for b, v in zip(bottom, values)]
+    ax.set(ylabel="time [s] (-log_view stages)", title="1 vs 2 ranks")
+    ax.legend()
+    return _save(fig, out, "parallel.png")

@@ -1,0 +1,349 @@
+#!/usr/bin/python3
+"""REPORT.md from the CSV files the studies wrote: tables with the paper's values side by side,
+the plots, the headline figures and the performance goals (met or by how much not).
+
+usage: report.py OUT_DIR     (reads OUT_DIR/*.csv and meta.json, writes OUT_DIR/REPORT.md)"""
+import json
+import sys
+from pathlib import Path
+
+import paper
+import plots
+from context import number, read_csv
+
+GOAL_SPEEDUP_PEERS = 3.0
+GOAL_SPEEDUP_RANKS = 1.6
+GOAL_DOFS = 51483
+
+
+def table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def count(v):
+    x = number(v)
+    return "" if x is None else f"{int(x):,}"
+
+
+def seconds(v):
+    x = number(v)
+    return "" if x is None else f"{x:.3g}"
+
+
+def outcome(row, column="iterations"):
+    """A converged run's count, or why it stopped."""
+    if row is None:
+        return "not run"
+    if row["dofs"] == "":
+        return row["reason"]
+    if row["converged"] == "1":
+        return count(row[column])
+    g = number(row.get("gradient_norm"))
+    why = row["reason"].replace("DIVERGED_", "").lower()
+    return f"stopped: {why}" + (f", {count(row[column])} its, \\|g\\| {g:.1e}" if g else "")
+
+
+def paper_cell(v):
+    return "—" if v is None else f"{v:,}"
+
+
+def find(rows, **match):
+    return next((r for r in rows if all(r[k] == str(v) for k, v in match.items())), None)
+
+
+class Report:
+    def __init__(self, out):
+        self.out = Path(out)
+        self.parts = []
+        self.headline = []
+        self.goals = []
+        self.meta = {}
+        if (self.out / "meta.json").is_file():
+            self.meta = json.loads((self.out / "meta.json").read_text())
+
+    def csv(self, name):
+        path = self.out / f"{name}.csv"
+        return read_csv(path) if path.is_file() else None
+
+    def add(self, text):
+        self.parts.append(text)
+
+    def image(self, name):
+        if name:
+            self.add(f"![{name}]({name})\n")
+
+    # --- Tables 3, 4, 5 -------------------------------------------------------------------
+    def iterations(self):
+        rows = self.csv("iterations")
+        if rows is None:
+            return
+        self.add("## Tables 3–5: iterations per step, dt = 1\n\nEach cell: mlshell / paper. "
+                 "TR is the single-level trust region with Dogleg; RMTR uses Dogleg smoothing "
+                 "(mlshell's default). Tolerance (7.1): \\|g\\| < 1e-7.\n")
+        tr = [r for r in rows if r["solver"] == "tr"]
+        dofs = sorted({int(r["refine"]) for r in tr})
+        body = []
+        for scene in paper.SCENES:
+            line = [scene]
+            for refine in dofs:
+                r = find(tr, scene=scene, refine=refine)
+                ref = paper.TR_ITERATIONS[scene][refine] if refine < 6 else None
+                d = count(r["dofs"]) if r and r["dofs"] else "?"
+                line.append(f"{outcome(r)} / {paper_cell(ref)} ({d} dofs)")
+            body.append(line)
+        self.add("### Table 3: single-level TR iterations\n\n" + table(
+            ["scene"] + [f"refine {k}" for k in dofs], body))
+        rm = [r for r in rows if r["solver"] == "rmtr"]
+        levels = sorted({int(r["levels"]) for r in rm})
+        body, met, compared = [], 0, 0
+        for scene in paper.SCENES:
+            line = [scene]
+            for lv in levels:
+                r = find(rm, scene=scene, levels=lv)
+                ref = paper.RMTR_CYCLES[scene][paper.LEVELS.index(lv)] \
+                    if lv in paper.LEVELS else None
+                line.append(f"{outcome(r)} / {paper_cell(ref)}")
+                if r and ref:
+                    compared += 1
+                    if r["converged"] == "1" and number(r["iterations"]) <= ref:
+                        met += 1
+                    self.headline.append(
+                        ("V-cycles", f"{scene}, {lv} levels ({count(r['dofs'])} dofs)",
+                         f"{outcome(r)} vs paper {ref:,}"))
+            body.append(line)
+        self.add("### Table 4: RMTR V-cycles vs number of levels\n\n" + table(
+            ["scene"] + [f"{k} levels" for k in levels], body))
+        if compared:
+            self.goals.append(("RMTR V-cycles at or below the paper's Table 4",
+                               f"{met} of {compared} cells", met == compared))
+        self.image(plots.iterations(rows, self.out))
+
+    # --- Tables 6, 7 ------------------------------------------------------------------------
+    def work(self):
+        rows = self.csv("work")
+        if rows is None:
+            return
+        body = []
+        for scene in paper.SCENES:
+            tr, rm = find(rows, scene=scene, solver="tr"), find(rows, scene=scene, solver="rmtr")
+            if not tr or not rm:
+                continue
+            for kind, column, ref in (("assembly", "assembly_work", paper.ASSEMBLY_WORK),
+                                      ("QP", "qp_work", paper.QP_WORK)):
+                a, b = number(tr[column]), number(rm[column])
+                ratio = f"{a / b:.2f}" if a and b else ""
+                p = ref[scene]
+                body.append([scene, kind, f"{outcome(tr, column)} / {p[0]:,}",
+                             f"{outcome(rm, column)} / {p[1]:,}", f"{ratio} / {p[0] / p[1]:.2f}",
+                             f"{seconds(tr[column + '_per_iteration'])} / {p[2]}",
+                             f"{seconds(rm[column + '_per_iteration'])} / {p[3]}"])
+        dofs = count(rows[0]["dofs"]) if rows else ""
+        self.add(f"## Tables 6–7: work units (eq. 7.3–7.4), {dofs} dofs\n\nmlshell / paper. "
+                 "One work unit is one assembly (or QP solve) on the finest level; coarse levels "
+                 "count by their share of control points.\n\n" + table(
+                     ["scene", "work", "TR total", "RMTR total", "TR/RMTR", "TR per it",
+                      "RMTR per cycle"], body))
+
+    # --- Table 8 ----------------------------------------------------------------------------
+    def projection(self):
+        rows = self.csv("projection")
+        if rows is None:
+            return
+        body = []
+        for scene in paper.SCENES:
+            lsq, rev = find(rows, scene=scene, projection="lsq"), find(
+                rows, scene=scene, projection="reverse")
+            if lsq or rev:
+                p = paper.PROJECTION_CYCLES[scene]
+                body.append([scene, count((lsq or rev)["dofs"]), f"{outcome(lsq)} / {p[0]:,}",
+                             f"{outcome(rev)} / {p[1]:,}"])
+        levels = rows[0]["levels"] if rows else ""
+        self.add(f"## Table 8: projection operator, {levels} levels\n\nV-cycles, mlshell / "
+                 "paper (3,675 dofs, four levels).\n\n" + table(
+                     ["scene", "dofs", "least-squares fit (5.18)", "reverse subdivision (5.19)"],
+                     body))
+
+    # --- Figure 9 ---------------------------------------------------------------------------
+    def condition(self):
+        rows = self.csv("condition")
+        if rows is None:
+            return
+        body = [[r["sweep"], count(r["dofs"]), r["beta"] or "h^-5",
+                 f"{number(r['lambda_min'], 0):.3e}", f"{number(r['lambda_max'], 0):.3e}",
+                 f"{number(r['condition'], 0):.3e}", "yes" if r["settled"] == "1" else "no",
+                 "yes" if r["converged"] == "1" else r["reason"]] for r in rows]
+        self.add("## Figure 9: condition number of the Hessian\n\nTrampoline, one step of dt = "
+                 "1, Hessian at the final iterate. Estimated by Lanczos with full "
+                 "reorthogonalisation on H (largest \\|λ\\|) and on H⁻¹ through a MUMPS LDLᵀ "
+                 "factorisation (smallest \\|λ\\|): `mlshell -mlshell_condition`. Paper: "
+                 f"{paper.CONDITION_NOTES}.\n\n" + table(
+                     ["sweep", "dofs", "β", "\\|λ\\|min", "\\|λ\\|max", "cond₂", "Lanczos settled",
+                      "step converged"], body))
+        self.image(plots.condition(rows, self.out))
+
+    # --- Figure 10 --------------------------------------------------------------------------
+    def timestep(self):
+        rows = self.csv("timestep")
+        if rows is None:
+            return
+        largest = {}
+        for r in rows:
+            key = (r["scene"], r["solver"])
+            largest.setdefault(key, None)
+            if r["converged"] == "1":
+                largest[key] = max(largest[key] or 0.0, number(r["dt"]))
+        scenes = list(dict.fromkeys(r["scene"] for r in rows))
+        solvers = list(dict.fromkeys(r["solver"] for r in rows))
+        tried = sorted({number(r["dt"]) for r in rows})
+
+        def cell(v):
+            return "none" if v is None else ("1" if v == 1 else f"1/{round(1 / v)}")
+        body = [[solver] + [cell(largest.get((s, solver))) for s in scenes] for solver in solvers]
+        self.add("## Figure 10: largest dt that converges\n\nOne step from rest at dt ∈ {" +
+                 ", ".join(cell(t) for t in tried) + f"}}, {count(rows[0]['dofs'])} dofs. Paper: "
+                 "the trust-region solvers converge at every dt for every scene; line search, "
+                 "damped Newton and the linearized equation need smaller steps.\n\n" +
+                 table(["solver"] + scenes, body))
+        self.image(plots.largest_timestep(largest, self.out))
+
+    # --- accuracy vs time -------------------------------------------------------------------
+    def accuracy(self):
+        rows = self.csv("accuracy")
+        if rows is None:
+            return
+        self.add("## Accuracy vs time\n\nError of one dt = 1 step against a reference solved "
+                 "by RMTR two levels finer than the finest run, against wall time (setup, solve "
+                 "and output of the whole run). Limit-surface error: L² distance of the "
+                 "displacements over the reference configuration (trapezoidal rule on the "
+                 "reference elements). Each point is one resolution × tolerance × solver; the "
+                 "line is the Pareto front. The table lists the front: for a time budget, take "
+                 "the last row that fits.\n")
+        for scene in dict.fromkeys(r["scene"] for r in rows):
+            mine = [r for r in rows if r["scene"] == scene and number(r["l2_error"]) is not None]
+            if not mine:
+                continue
+            front = plots.pareto_front([(number(r["wall_time"]), number(r["l2_error"]))
+                                        for r in mine])
+            body = []
+            for t, e in front:
+                r = next(r for r in mine if number(r["wall_time"]) == t
+                         and number(r["l2_error"]) == e)
+                body.append([seconds(t), f"{e:.3e}", f"{number(r['probe_error']):.3e}",
+                             r["solver"], count(r["dofs"]), r["tolerance"], count(r["iterations"])])
+            failed = sum(1 for r in rows if r["scene"] == scene and r["converged"] != "1")
+            self.add(f"### {scene} (reference: {count(mine[0]['reference_dofs'])} dofs)\n\n" +
+                     table(["wall [s]", "L² error", "probe error [m]", "solver", "dofs",
+                            "tolerance", "iterations"], body) +
+                     (f"\n{failed} run(s) did not converge and are not plotted.\n"
+                      if failed else ""))
+            self.image(plots.accuracy(rows, self.out, scene))
+
+    # --- peers ------------------------------------------------------------------------------
+    def peers(self):
+        rows = self.csv("peers")
+        if rows is None:
+            return
+        body = []
+        for scene, dofs in dict.fromkeys((r["scene"], r["dofs"]) for r in rows):
+            group = [r for r in rows if r["scene"] == scene and r["dofs"] == dofs]
+            rm = find(group, solver="rmtr")
+            t_rm = number(rm["wall_time"]) if rm and rm["converged"] == "1" else None
+            best = None
+            for r in group:
+                t = number(r["wall_time"])
+                ratio = f"{t / t_rm:.2f}" if t and t_rm and r["converged"] == "1" else ""
+                body.append([scene, count(dofs), r["solver"], seconds(r["wall_time"]),
+                             outcome(r), count(r["linear_iterations"]), ratio])
+                if r["solver"] != "rmtr" and r["converged"] == "1" and t and (
+                        best is None or t < number(best["wall_time"])):
+                    best = r
+            if t_rm and best:
+                ratio = number(best["wall_time"]) / t_rm
+                self.headline.append(("RMTR vs best PETSc solver", f"{scene}, {count(dofs)} dofs",
+                                      f"{best['solver']} takes {ratio:.2f}× RMTR's time"))
+                if int(dofs or 0) == GOAL_DOFS:
+                    self.goals.append((f"RMTR ≥ {GOAL_SPEEDUP_PEERS:g}× faster than the best PETSc "
+                                       f"solver at {GOAL_DOFS:,} dofs ({scene})",
+                                       f"{ratio:.2f}×", ratio >= GOAL_SPEEDUP_PEERS))
+            elif not t_rm:
+                self.headline.append(("RMTR vs best PETSc solver", f"{scene}, {count(dofs)} dofs",
+                                      "RMTR did not converge"))
+        self.add("## RMTR vs PETSc's solvers\n\nSame step (dt = 1), same tolerance (\\|g\\| < "
+                 "1e-7), same ranks. Ratio: wall time over RMTR's (above 1: RMTR is faster).\n\n" +
+                 table(["scene", "dofs", "solver", "wall [s]", "iterations", "linear its",
+                        "time / RMTR"], body))
+        self.image(plots.peers(rows, self.out))
+
+    # --- parallel ---------------------------------------------------------------------------
+    def parallel(self):
+        rows = self.csv("parallel")
+        if rows is None:
+            return
+        body = []
+        for scene, dofs in dict.fromkeys((r["scene"], r["dofs"]) for r in rows):
+            one, two = find(rows, scene=scene, dofs=dofs, ranks=1), find(
+                rows, scene=scene, dofs=dofs, ranks=2)
+            for r in (one, two):
+                if r:
+                    body.append([scene, count(dofs), r["ranks"], seconds(r["wall_time"]),
+                                 seconds(r["stage_setup"]), seconds(r["stage_solve"]),
+                                 seconds(r["stage_output"]), outcome(r)])
+            if one and two and number(one["wall_time"]) and number(two["wall_time"]):
+                s = number(one["wall_time"]) / number(two["wall_time"])
+                self.headline.append(("2-rank speedup (wall)", f"{scene}, {count(dofs)} dofs",
+                                      f"{s:.2f}"))
+                if int(dofs or 0) == GOAL_DOFS:
+                    self.goals.append((f"2 ranks ≥ {GOAL_SPEEDUP_RANKS}× faster than 1 at "
+                                       f"{GOAL_DOFS:,} dofs ({scene})", f"{s:.2f}×",
+                                       s >= GOAL_SPEEDUP_RANKS))
+        self.add("## Parallel: 1 vs 2 ranks\n\nRMTR, one step of dt = 1; times in seconds by "
+                 "`-log_view` stage.\n\n" + table(
+                     ["scene", "dofs", "ranks", "wall", "Setup", "Solve", "Output", "V-cycles"],
+                     body))
+        events = self.csv("parallel_events")
+        if events:
+            body = [[e["scene"], e["refine"], e["ranks"], e["event"], seconds(e["time"])]
+                    for e in events]
+            self.add("Costliest events of the Solve stage (max over ranks):\n\n" + table(
+                ["scene", "refine", "ranks", "event", "time [s]"], body))
+        self.image(plots.parallel(rows, self.out))
+
+    def write(self):
+        for study in (self.iterations, self.work, self.projection, self.condition,
+                      self.timestep, self.accuracy, self.peers, self.parallel):
+            study()
+        m = self.meta
+        head = ["# mlshell convergence studies\n",
+                f"Mode: **{m.get('mode', '?')}**, {m.get('ranks', '?')} MPI ranks, "
+                f"{m.get('cores', '?')} cores, commit {m.get('commit', '?')}, "
+                f"{m.get('date', '?')}, {m.get('elapsed', 0):.0f} s in all. "
+                f"Reproduce: `{m.get('command', 'examples/studies/studies.py')}`.\n"]
+        head.append("## Headline\n\n" + (table(["measure", "case", "value"], self.headline)
+                                         if self.headline else "No study produced a headline "
+                                         "figure.\n"))
+        goals = [[g, v, "met" if ok else "**not met**"] for g, v, ok in self.goals]
+        if not any("PETSc" in g for g, _, _ in self.goals):
+            goals.append([f"RMTR ≥ {GOAL_SPEEDUP_PEERS:g}× faster than the best PETSc solver at "
+                          f"{GOAL_DOFS:,} dofs", "not measured in this run", ""])
+        if not any("ranks" in g for g, _, _ in self.goals):
+            goals.append([f"2 ranks ≥ {GOAL_SPEEDUP_RANKS}× faster than 1 at {GOAL_DOFS:,} dofs",
+                          "not measured in this run", ""])
+        head.append("## Performance goals\n\n" + table(["goal", "measured", ""], goals))
+        text = "\n".join(head + self.parts)
+        tmp = self.out / "REPORT.md.tmp"
+        tmp.write_text(text)
+        tmp.replace(self.out / "REPORT.md")
+        return self.out / "REPORT.md"
+
+
+def main(argv):
+    if len(argv) != 2 or not Path(argv[1]).is_dir():
+        sys.exit(__doc__.strip().splitlines()[-1] if len(argv) != 2 else
+                 f"report.py: error: '{argv[1]}' is not a folder")
+    print(f"wrote {Report(argv[1]).write()}")
+
+
+if __name__ == "__main__":
+    main(sys.argv)

@@ -1,0 +1,69 @@
+"""The solver configurations the studies compare, each a name, a description and PETSc options.
+
+Tolerances are set by `with_tolerance`, so that every solver stops on the same test: the
+gradient norm ‖∇f‖₂ (TAO gatol, SNES atol; paper eq. 7.1 uses 1e-7).
+"""
+
+_HYPRE = ["-pc_hypre_type", "boomeramg", "-pc_hypre_boomeramg_nodal_coarsen", "1",
+          "-pc_hypre_boomeramg_vec_interp_variant", "2"]
+
+
+def _bnk(prefix_options):
+    return [o if not o.startswith("-pc_") and not o.startswith("-ksp_") else "-tao_bnk_" + o[1:]
+            for o in prefix_options]
+
+
+SOLVERS = {
+    "rmtr": ("RMTR, Dogleg smoothing (mlshell default)", ["-tao_type", "rmtr"]),
+    "rmtr-paper": ("RMTR, 10 ST-CG smoothing steps, Dogleg coarse (paper §7.3)",
+                   ["-options_file", "@petsc-options/rmtr-paper.yaml"]),
+    "tr": ("single-level TR, Dogleg (Alg. 4.1)", ["-tao_type", "tr", "-tao_max_it", "100000"]),
+    "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),
+    "bnls-mumps": ("TAO bnls, ST-CG + MUMPS LU (line-search Newton)", ["-tao_type", "bnls"]),
+    "bntr-gamg": ("TAO bntr, ST-CG + GAMG",
+                  ["-tao_type", "bntr"] + _bnk(["-ksp_type", "stcg", "-ksp_max_it", "500",
+                                                "-pc_type", "gamg"])),
+    "bnls-gamg": ("TAO bnls, ST-CG + GAMG",
+                  ["-tao_type", "bnls"] + _bnk(["-ksp_type", "stcg", "-ksp_max_it", "500",
+                                                "-pc_type", "gamg"])),
+    "bntr-boomeramg": ("TAO bntr, ST-CG + hypre BoomerAMG",
+                       ["-tao_type", "bntr"] + _bnk(["-ksp_type", "stcg", "-ksp_max_it", "500",
+                                                     "-pc_type", "hypre"] + _HYPRE)),
+    "bnls-boomeramg": ("TAO bnls, ST-CG + hypre BoomerAMG",
+                       ["-tao_type", "bnls"] + _bnk(["-ksp_type", "stcg", "-ksp_max_it", "500",
+                                                     "-pc_type", "hypre"] + _HYPRE)),
+    # Inexact Newton: a GMRES solve that stops at its iteration cap still gives the step.
+    "snes-boomeramg": ("SNES newtonls (bt line search), GMRES + hypre BoomerAMG",
+                       ["-mlshell_step_solver", "snes", "-snes_type", "newtonls",
+                        "-snes_max_linear_solve_fail", "1000000", "-ksp_type", "gmres",
+                        "-ksp_max_it", "500", "-ksp_rtol", "1e-6", "-pc_type", "hypre"]
+                       + _HYPRE),
+    "snes-mumps": ("SNES newtonls (bt line search), MUMPS LU",
+                   ["-mlshell_step_solver", "snes", "-snes_type", "newtonls"]),
+    "dampednewton": ("damped Newton, alpha = 0.3", ["-tao_type", "dampednewton"]),
+    "linearized": ("linearized equation (one Newton step)", ["-tao_type", "linearized"]),
+}
+
+PEERS = ["bntr-mumps", "bnls-mumps", "bntr-gamg", "bnls-gamg", "bntr-boomeramg",
+         "bnls-boomeramg", "snes-boomeramg", "snes-mumps"]
+
+
+def options(name, source):
+    """PETSc options of solver `name`; '@' marks a path relative to the source tree."""
+    if name not in SOLVERS:
+        raise KeyError(f"unknown solver '{name}'; known: {', '.join(SOLVERS)}")
+    return [str(source / o[1:]) if o.startswith("@") else o for o in SOLVERS[name][1]]
+
+
+def with_tolerance(name, source, tol, max_it=None):
+    """Options of `name` stopping at ‖∇f‖₂ < tol (and at most max_it iterations if given)."""
+    opts = options(name, source)
+    if "-mlshell_step_solver" in opts:
+        opts += ["-snes_atol", repr(tol)] + (["-snes_max_it", str(max_it)] if max_it else [])
+    else:
+        opts += ["-tao_gatol", repr(tol)] + (["-tao_max_it", str(max_it)] if max_it else [])
+    return opts
+
+
+def describe(name):
+    return SOLVERS[name][0]

@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""mlshell convergence studies (paper §7): runs each study on 2 MPI ranks, writes one CSV per
+study, PNG plots and REPORT.md with the paper's values side by side.
+
+  examples/studies/studies.py --quick            minutes: small cases, used by the test suite
+  examples/studies/studies.py --full             the paper's resolutions: hours on 2 cores
+  examples/studies/studies.py --full --only peers parallel
+  examples/studies/studies.py --report-only --out DIR   redraw REPORT.md from DIR's CSVs
+
+Studies: iterations (Tables 3-5), work (Tables 6-7), projection (Table 8), condition (Fig. 9),
+timestep (Fig. 10), accuracy (error vs wall time, Pareto front), peers (RMTR vs PETSc TAO/SNES
+with GAMG, BoomerAMG, MUMPS), parallel (1 vs 2 ranks, -log_view stages).
+Every solve runs in OUT/runs/<study>/<case>/ (command.txt, stdout.txt, summary.json)."""
+import argparse
+import datetime
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import report  # noqa: E402
+import study_accuracy  # noqa: E402
+import study_condition  # noqa: E402
+import study_iterations  # noqa: E402
+import study_parallel  # noqa: E402
+import study_peers  # noqa: E402
+import study_projection  # noqa: E402
+import study_timestep  # noqa: E402
+import study_work  # noqa: E402
+from context import Context  # noqa: E402
+from runner import SOURCE, Runner  # noqa: E402
+
+STUDIES = {m.NAME: m for m in (study_iterations, study_work, study_projection, study_condition,
+                               study_timestep, study_accuracy, study_peers, study_parallel)}
+
+
+def arguments(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter,
+                                epilog=__doc__.split("\n\n", 1)[1])
+    mode = p.add_mutually_exclusive_group()
+    mode.add_argument("--quick", dest="mode", action="store_const", const="quick",
+                      help="small cases, minutes (default)")
+    mode.add_argument("--full", dest="mode", action="store_const", const="full",
+                      help="the paper's resolutions, hours")
+    p.add_argument("--only", nargs="+", metavar="STUDY", choices=list(STUDIES),
+                   help=f"run only these ({', '.join(STUDIES)})")
+    p.add_argument("--build", default=str(SOURCE / "build"), help="folder holding mlshell")
+    p.add_argument("--out", help="output folder (default BUILD/studies-MODE)")
+    p.add_argument("--ranks", type=int, default=2, help="MPI ranks per solve (default 2)")
+    p.add_argument("--timeout", type=float,
+                   help="seconds one solve may take before it is killed and reported "
+                        "(default 300 quick, 3600 full)")
+    p.add_argument("--report-only", action="store_true", help="only redraw REPORT.md")
+    a = p.parse_args(argv)
+    a.mode = a.mode or "quick"
+    if a.ranks < 1:
+        p.error(f"--ranks must be >= 1; got {a.ranks}")
+    if a.timeout is not None and a.timeout <= 0:
+        p.error(f"--timeout must be positive; got {a.timeout}")
+    a.timeout = a.timeout or (300.0 if a.mode == "quick" else 3600.0)
+    a.out = Path(a.out or Path(a.build) / f"studies-{a.mode}").resolve()
+    return a
+
+
+def commit():
+    try:
+        return subprocess.run(["git", "-C", str(SOURCE), "rev-parse", "--short", "HEAD"],
+                              capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def main(argv):
+    a = arguments(argv)
+    a.out.mkdir(parents=True, exist_ok=True)
+    if a.report_only:
+        print(f"wrote {report.Report(a.out).write()}")
+        return 0
+    names = a.only or list(STUDIES)
+    ctx = Context(Runner(a.build, a.out, a.ranks, a.timeout), a.mode, a.out)
+    start = time.monotonic()
+    for i, name in enumerate(names, 1):
+        print(f"studies: [{i}/{len(names)}] {name} ({a.mode}), {time.monotonic() - start:.0f} s "
+              "so far", flush=True)
+        STUDIES[name].run(ctx)
+    meta = {"mode": a.mode, "ranks": a.ranks, "cores": os.cpu_count(), "commit": commit(),
+            "date": datetime.datetime.now().isoformat(timespec="seconds"),
+            "elapsed": time.monotonic() - start, "studies": names,
+            "command": " ".join(["examples/studies/studies.py", f"--{a.mode}"] +
+                                (["--only", *a.only] if a.only else []))}
+    (a.out / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
+    path = report.Report(a.out).write()
+    print(f"studies: done in {meta['elapsed']:.0f} s; report: {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,96 @@
+#!/usr/bin/python3
+"""Runs every study in quick mode and checks what it wrote: each CSV exists, parses, has its
+columns and the expected rows (one per case the quick mode defines), the numbers a converged
+trampoline run must have are there, the plots are PNG files and REPORT.md names every study.
+
+usage: quick_outputs.py BUILD_DIR WORK_DIR"""
+import subprocess
+import sys
+from pathlib import Path
+
+SOURCE = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(SOURCE / "examples" / "studies"))
+
+from context import number, read_csv  # noqa: E402
+import studies  # noqa: E402
+
+# study CSV -> rows the quick mode must produce, as (key columns -> values) sets.
+EXPECTED_ROWS = {
+    "iterations": 12,       # 4 scenes x (TR at refine 0, 1 + RMTR with 2 levels)
+    "work": 4,              # trampoline, drooping x (TR, RMTR)
+    "projection": 2,        # lsq, reverse
+    "condition": 4,         # 2 resolutions + 2 penalties
+    "timestep": 10,         # 5 solvers x 2 time steps
+    "accuracy": 8,          # 2 solvers x 2 resolutions x 2 tolerances
+    "peers": 9,             # RMTR + 8 PETSc configurations
+    "parallel": 2,          # 1 and 2 ranks
+}
+PLOTS = ("iterations.png", "condition.png", "timestep.png", "accuracy_trampoline.png",
+         "peers.png", "parallel.png")
+
+
+def fail(message):
+    sys.exit(f"quick_outputs: FAIL: {message}")
+
+
+def check(out):
+    for name, count in EXPECTED_ROWS.items():
+        path = out / f"{name}.csv"
+        if not path.is_file():
+            fail(f"{path} was not written")
+        rows = read_csv(path)
+        columns = getattr(studies.STUDIES[name], "COLUMNS")
+        if not rows or list(rows[0].keys()) != columns:
+            fail(f"{path}: header is not {columns}")
+        if len(rows) != count:
+            fail(f"{path}: {len(rows)} rows, expected {count}")
+    # The trampoline converges with RMTR everywhere in quick mode: its numbers must be real.
+    for r in read_csv(out / "iterations.csv"):
+        if r["scene"] == "trampoline" and (r["converged"] != "1" or not number(r["iterations"])):
+            fail(f"iterations.csv: trampoline {r['solver']} refine {r['refine']} did not "
+                 f"converge: {r['reason']}")
+    acc = [r for r in read_csv(out / "accuracy.csv") if r["solver"] == "rmtr"]
+    errors = {(r["refine"], r["tolerance"]): number(r["l2_error"]) for r in acc}
+    if any(e is None or not e > 0 for e in errors.values()):
+        fail(f"accuracy.csv: RMTR rows lack a positive L2 error: {errors}")
+    # Finer resolution at the tight tolerance must be closer to the reference.
+    if not errors[("1", "1e-05")] < errors[("0", "1e-05")]:
+        fail(f"accuracy.csv: the L2 error does not fall with refinement: {errors}")
+    cond = [number(r["condition"]) for r in read_csv(out / "condition.csv")
+            if r["sweep"] == "dofs"]
+    if not all(c and c > 1 for c in cond) or not cond[1] > cond[0]:
+        fail(f"condition.csv: condition numbers {cond} do not grow with the dofs")
+    par = read_csv(out / "parallel.csv")
+    if any(number(r["stage_solve"]) is None for r in par):
+        fail("parallel.csv: a run lacks the -log_view Solve stage time")
+    if not read_csv(out / "parallel_events.csv"):
+        fail("parallel_events.csv is empty")
+    for plot in PLOTS:
+        data = (out / plot).read_bytes() if (out / plot).is_file() else b""
+        if not data.startswith(b"\x89PNG"):
+            fail(f"{plot} is missing or not a PNG")
+    report = (out / "REPORT.md").read_text()
+    for heading in ("## Headline", "## Performance goals", "Table 3", "Table 4", "Tables 6–7",
+                    "Table 8", "Figure 9", "Figure 10", "## Accuracy vs time",
+                    "## RMTR vs PETSc", "## Parallel"):
+        if heading not in report:
+            fail(f"REPORT.md has no section '{heading}'")
+    for plot in PLOTS:
+        if f"]({plot})" not in report:
+            fail(f"REPORT.md does not show {plot}")
+
+
+def main(argv):
+    if len(argv) != 3:
+        sys.exit(__doc__.strip().splitlines()[-1])
+    build, out = Path(argv[1]), Path(argv[2])
+    code = subprocess.run([sys.executable, str(SOURCE / "examples/studies/studies.py"), "--quick",
+                           "--build", str(build), "--out", str(out)]).returncode
+    if code != 0:
+        fail(f"studies.py --quick exited with {code}")
+    check(out)
+    print("quick_outputs: every study wrote its CSV, plots and report section")
+
+
+if __name__ == "__main__":
+    main(sys.argv)

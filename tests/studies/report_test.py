@@ -1,0 +1,158 @@
+#!/usr/bin/python3
+"""Unit tests of the study tools that need no solver: the L2 distance of two sampled limit
+surfaces, the Pareto front, the -log_view parser, and REPORT.md built from known CSV rows."""
+import csv
+import math
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples" / "studies"))
+
+import report  # noqa: E402
+import studies  # noqa: E402
+from plots import pareto_front  # noqa: E402
+from runner import parse_log_view  # noqa: E402
+from study_accuracy import l2_distance  # noqa: E402
+
+
+def unit_square_elements(n, displacement):
+    """Rows (point, displacement) of an n×n grid of elements on [0,1]², four corners each."""
+    rows = []
+    for j in range(n):
+        for i in range(n):
+            for dj in (0, 1):
+                for di in (0, 1):
+                    p = ((i + di) / n, (j + dj) / n, 0.0)
+                    rows.append((p, displacement(p)))
+    return rows
+
+
+class L2Distance(unittest.TestCase):
+    def test_constant_difference_times_root_area(self):
+        ref = unit_square_elements(4, lambda p: (0.0, 0.0, 0.0))
+        coarse = unit_square_elements(2, lambda p: (0.0, 0.0, 0.3))
+        # Coarse samples at the reference's corners: 2 samples per coarse element edge.
+        coarse += [(p, (0.0, 0.0, 0.3)) for p, _ in ref]
+        self.assertAlmostEqual(l2_distance(coarse, ref), 0.3, places=12)
+
+    def test_linear_field_is_integrated_exactly(self):
+        # ∫∫ x² over the unit square = 1/3; the trapezoidal rule on 8×8 elements: 1/3 + 1/384.
+        ref = unit_square_elements(8, lambda p: (0.0, 0.0, 0.0))
+        coarse = [(p, (p[0], 0.0, 0.0)) for p, _ in ref]
+        self.assertAlmostEqual(l2_distance(coarse, ref) ** 2, 1 / 3 + 1 / 384, places=12)
+
+    def test_missing_point_is_an_error(self):
+        ref = unit_square_elements(2, lambda p: (0.0, 0.0, 0.0))
+        with self.assertRaises(RuntimeError):
+            l2_distance(ref[:-1], ref + [((0.1, 0.1, 0.0), (0.0, 0.0, 0.0))] * 4)
+
+
+class ParetoFront(unittest.TestCase):
+    def test_keeps_only_undominated_points(self):
+        pts = [(1.0, 1e-2), (2.0, 1e-3), (3.0, 5e-3), (4.0, 1e-4), (0.5, 1e-1)]
+        self.assertEqual(pareto_front(pts), [(0.5, 1e-1), (1.0, 1e-2), (2.0, 1e-3), (4.0, 1e-4)])
+
+
+LOG_VIEW = """
+Summary of Stages:   ----- Time ------  ----- Flop ------  --- Messages ---  -- Message Lengths --  -- Reductions --
+                        Avg     %Total     Avg     %Total    Count   %Total     Avg         %Total    Count   %Total
+ 0:      Main Stage: 1.0000e-02   1.0%  0.0000e+00   0.0%  0.000e+00   0.0%  0.000e+00        0.0%  0.000e+00   0.0%
+ 1:           Setup: 2.5000e-01  25.0%  0.0000e+00   0.0%  0.000e+00   0.0%  0.000e+00        0.0%  0.000e+00   0.0%
+ 2:           Solve: 7.0000e-01  70.0%  1.0000e+06 100.0%  0.000e+00   0.0%  0.000e+00        0.0%  0.000e+00   0.0%
+ 3:          Output: 4.0000e-02   4.0%  0.0000e+00   0.0%  0.000e+00   0.0%  0.000e+00        0.0%  0.000e+00   0.0%
+
+------------------------------------------------------------------------------------------------------------------------
+Event                Count      Time (sec)     Flop                              --- Global ---  --- Stage ----  Total
+--- Event Stage 2: Solve
+
+MatMult               10 1.0 1.5000e-02 1.1 2.00e+05 1.0 0.0e+00 0.0e+00 0.0e+00  2 20  0  0  0   2 20  0  0  0    13
+MatCholFctrNum         3 1.0 3.0000e-01 1.0 0.00e+00 0.0 0.0e+00 0.0e+00 0.0e+00 30  0  0  0  0  43  0  0  0  0     0
+"""
+
+
+class LogView(unittest.TestCase):
+    def test_stages_and_events(self):
+        log = parse_log_view(LOG_VIEW)
+        self.assertEqual(log["stages"], {"Main Stage": 0.01, "Setup": 0.25, "Solve": 0.7,
+                                         "Output": 0.04})
+        self.assertEqual(log["events"]["Solve"], {"MatMult": 0.015, "MatCholFctrNum": 0.3})
+
+
+def write(folder, name, rows):
+    columns = studies.STUDIES[name].COLUMNS if name in studies.STUDIES else list(rows[0])
+    with open(folder / f"{name}.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns)
+        w.writeheader()
+        for r in rows:
+            w.writerow({c: r.get(c, "") for c in columns})
+
+
+def run_row(scene, dofs, iterations, converged=1, **extra):
+    return {"scene": scene, "dofs": dofs, "iterations": iterations, "converged": converged,
+            "reason": "CONVERGED_GATOL" if converged else "DIVERGED_TR_REDUCTION",
+            "gradient_norm": 1e-8 if converged else 0.5, "ranks": 2, **extra}
+
+
+class ReportFromKnownRows(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.out = Path(self.dir.name)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def build(self):
+        return report.Report(self.out).write().read_text()
+
+    def test_vcycles_side_by_side_and_goal(self):
+        write(self.out, "iterations", [
+            run_row("trampoline", 363, 12, solver="rmtr", levels=2, refine=1),
+            run_row("drooping", 363, 46, 0, solver="rmtr", levels=2, refine=1),
+            run_row("trampoline", 147, 7, solver="tr", levels=1, refine=0)])
+        text = self.build()
+        self.assertIn("12 / 633", text)          # Table 4, trampoline, 2 levels
+        self.assertIn("7 / 1,385", text)         # Table 3, trampoline, 147 dofs
+        self.assertIn("stopped: tr_reduction", text)
+        self.assertIn("| 1 of 2 cells | **not met** |", text)
+
+    def test_peer_ratios_speedup_and_goals_at_51483(self):
+        write(self.out, "peers", [
+            run_row("trampoline", 51483, 5, solver="rmtr", wall_time=10.0, linear_iterations=5),
+            run_row("trampoline", 51483, 20, solver="bntr-gamg", wall_time=40.0,
+                    linear_iterations=900),
+            run_row("trampoline", 51483, 9, 0, solver="bnls-mumps", wall_time=5.0)])
+        write(self.out, "parallel", [
+            run_row("trampoline", 51483, 5, refine=5, ranks=1, wall_time=20.0, stage_solve=18.0),
+            run_row("trampoline", 51483, 5, refine=5, ranks=2, wall_time=16.0, stage_solve=14.0)])
+        text = self.build()
+        self.assertIn("| 4.00 |", text)  # bntr-gamg: 40 s / 10 s
+        self.assertIn("bntr-gamg takes 4.00× RMTR's time", text)  # the failed bnls is not "best"
+        self.assertIn("| 4.00× | met |", text)
+        self.assertIn("| 1.25× | **not met** |", text)  # 20 s / 16 s < 1.6
+
+    def test_goals_not_measured_are_said_so(self):
+        write(self.out, "projection", [run_row("trampoline", 3675, 81, projection="reverse",
+                                               levels=4)])
+        text = self.build()
+        self.assertIn("81 / 81", text)
+        self.assertEqual(text.count("not measured in this run"), 2)
+
+    def test_accuracy_front_table(self):
+        rows = []
+        for solver, wall, err in (("rmtr", 1.0, 1e-3), ("rmtr", 2.0, 1e-5), ("tr", 3.0, 1e-4)):
+            rows.append(run_row("trampoline", 1083, 3, solver=solver, wall_time=wall,
+                                l2_error=err, probe_error=err, tolerance=1e-5,
+                                reference_dofs=13467))
+        write(self.out, "accuracy", rows)
+        text = self.build()
+        self.assertIn("reference: 13,467 dofs", text)
+        front = text.split("### trampoline")[1]
+        self.assertIn("| 2 | 1.000e-05 |", front)
+        self.assertNotIn("| 3 | 1.000e-04 |", front)  # dominated by rmtr at 2 s
+        self.assertTrue((self.out / "accuracy_trampoline.png").is_file())
+
+
+if __name__ == "__main__":
+    unittest.main()
