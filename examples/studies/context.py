@@ -6,8 +6,9 @@ from runner import SOURCE, Runner
 
 
 class Context:
-    def __init__(self, runner: Runner, mode: str, out: Path):
+    def __init__(self, runner: Runner, mode: str, out: Path, scenes=None):
         self.runner = runner
+        self.selected_scenes = scenes  # None: every scene a study defines
         self.mode = mode  # "quick" or "full"
         self.out = Path(out)
         self.source = SOURCE
@@ -15,6 +16,11 @@ class Context:
 
     def pick(self, quick, full):
         return quick if self.mode == "quick" else full
+
+    def scenes(self, quick, full):
+        """The scenes of this mode, less those --scenes leaves out."""
+        chosen = self.pick(quick, full)
+        return [s for s in chosen if self.selected_scenes is None or s in self.selected_scenes]
 
     def run(self, study, tag, scene, refine, options=(), **kwargs):
         """Runner.run, remembered: an identical solve asked for by two studies runs once."""

@@ -264,9 +264,12 @@ class Report:
                 self.headline.append(("RMTR vs best PETSc solver", f"{scene}, {count(dofs)} dofs",
                                       f"{best['solver']} takes {ratio:.2f}× RMTR's time"))
                 if int(dofs or 0) == GOAL_DOFS:
+                    ok = ratio >= GOAL_SPEEDUP_PEERS
                     self.goals.append((f"RMTR ≥ {GOAL_SPEEDUP_PEERS:g}× faster than the best PETSc "
                                        f"solver at {GOAL_DOFS:,} dofs ({scene})",
-                                       f"{ratio:.2f}×", ratio >= GOAL_SPEEDUP_PEERS))
+                                       f"{ratio:.2f}×" + ("" if ok else self.time_split(scene,
+                                                                                        dofs)),
+                                       ok))
             elif not t_rm:
                 self.headline.append(("RMTR vs best PETSc solver", f"{scene}, {count(dofs)} dofs",
                                       "RMTR did not converge"))
@@ -275,6 +278,19 @@ class Report:
                  table(["scene", "dofs", "solver", "wall [s]", "iterations", "linear its",
                         "time / RMTR"], body))
         self.image(plots.peers(rows, self.out))
+
+    def time_split(self, scene, dofs, ranks=2):
+        """Where an RMTR solve's time goes, from the parallel study's -log_view (if it ran)."""
+        rows, events = self.csv("parallel") or [], self.csv("parallel_events") or []
+        r = find(rows, scene=scene, dofs=dofs, ranks=ranks)
+        if not r or number(r["stage_solve"]) is None:
+            return ""
+        top = [e for e in events if e["scene"] == scene and e["ranks"] == str(ranks)
+               and e["refine"] == r["refine"]][:4]
+        split = (f"; RMTR on {ranks} ranks: Setup {seconds(r['stage_setup']) or '?'} s, Solve "
+                 f"{seconds(r['stage_solve'])} s")
+        return split + (" (" + ", ".join(f"{e['event']} {seconds(e['time'])} s" for e in top) +
+                        ")" if top else "")
 
     # --- parallel ---------------------------------------------------------------------------
     def parallel(self):
@@ -295,9 +311,11 @@ class Report:
                 self.headline.append(("2-rank speedup (wall)", f"{scene}, {count(dofs)} dofs",
                                       f"{s:.2f}"))
                 if int(dofs or 0) == GOAL_DOFS:
+                    ok = s >= GOAL_SPEEDUP_RANKS
                     self.goals.append((f"2 ranks ≥ {GOAL_SPEEDUP_RANKS}× faster than 1 at "
-                                       f"{GOAL_DOFS:,} dofs ({scene})", f"{s:.2f}×",
-                                       s >= GOAL_SPEEDUP_RANKS))
+                                       f"{GOAL_DOFS:,} dofs ({scene})",
+                                       f"{s:.2f}×" + ("" if ok else self.time_split(scene, dofs)),
+                                       ok))
         self.add("## Parallel: 1 vs 2 ranks\n\nRMTR, one step of dt = 1; times in seconds by "
                  "`-log_view` stage.\n\n" + table(
                      ["scene", "dofs", "ranks", "wall", "Setup", "Solve", "Output", "V-cycles"],
@@ -315,11 +333,13 @@ class Report:
                       self.timestep, self.accuracy, self.peers, self.parallel):
             study()
         m = self.meta
+        runs = m.get("runs", [])
         head = ["# mlshell convergence studies\n",
                 f"Mode: **{m.get('mode', '?')}**, {m.get('ranks', '?')} MPI ranks, "
-                f"{m.get('cores', '?')} cores, commit {m.get('commit', '?')}, "
-                f"{m.get('date', '?')}, {m.get('elapsed', 0):.0f} s in all. "
-                f"Reproduce: `{m.get('command', 'examples/studies/studies.py')}`.\n"]
+                f"{m.get('cores', '?')} cores, commit {m.get('commit', '?')}. Reproduce (each "
+                "command adds its studies' CSV files to this folder):\n\n" +
+                "".join(f"- `{r['command']}` ({r['date']}, {r['elapsed']:.0f} s)\n"
+                        for r in runs)]
         head.append("## Headline\n\n" + (table(["measure", "case", "value"], self.headline)
                                          if self.headline else "No study produced a headline "
                                          "figure.\n"))

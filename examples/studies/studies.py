@@ -4,7 +4,7 @@ study, PNG plots and REPORT.md with the paper's values side by side.
 
   examples/studies/studies.py --quick            minutes: small cases, used by the test suite
   examples/studies/studies.py --full             the paper's resolutions: hours on 2 cores
-  examples/studies/studies.py --full --only peers parallel
+  examples/studies/studies.py --full --only peers parallel --scenes trampoline
   examples/studies/studies.py --report-only --out DIR   redraw REPORT.md from DIR's CSVs
 
 Studies: iterations (Tables 3-5), work (Tables 6-7), projection (Table 8), condition (Fig. 9),
@@ -32,7 +32,7 @@ import study_projection  # noqa: E402
 import study_timestep  # noqa: E402
 import study_work  # noqa: E402
 from context import Context  # noqa: E402
-from runner import SOURCE, Runner  # noqa: E402
+from runner import SCENES, SOURCE, Runner  # noqa: E402
 
 STUDIES = {m.NAME: m for m in (study_iterations, study_work, study_projection, study_condition,
                                study_timestep, study_accuracy, study_peers, study_parallel)}
@@ -49,6 +49,8 @@ def arguments(argv):
                       help="the paper's resolutions, hours")
     p.add_argument("--only", nargs="+", metavar="STUDY", choices=list(STUDIES),
                    help=f"run only these ({', '.join(STUDIES)})")
+    p.add_argument("--scenes", nargs="+", metavar="SCENE", choices=list(SCENES),
+                   help=f"only these scenes ({', '.join(SCENES)}); default: each study's own")
     p.add_argument("--build", default=str(SOURCE / "build"), help="folder holding mlshell")
     p.add_argument("--out", help="output folder (default BUILD/studies-MODE)")
     p.add_argument("--ranks", type=int, default=2, help="MPI ranks per solve (default 2)")
@@ -62,6 +64,7 @@ def arguments(argv):
         p.error(f"--ranks must be >= 1; got {a.ranks}")
     if a.timeout is not None and a.timeout <= 0:
         p.error(f"--timeout must be positive; got {a.timeout}")
+    a.timeout_given = a.timeout is not None
     a.timeout = a.timeout or (300.0 if a.mode == "quick" else 3600.0)
     a.out = Path(a.out or Path(a.build) / f"studies-{a.mode}").resolve()
     return a
@@ -82,20 +85,28 @@ def main(argv):
         print(f"wrote {report.Report(a.out).write()}")
         return 0
     names = a.only or list(STUDIES)
-    ctx = Context(Runner(a.build, a.out, a.ranks, a.timeout), a.mode, a.out)
+    ctx = Context(Runner(a.build, a.out, a.ranks, a.timeout), a.mode, a.out, a.scenes)
     start = time.monotonic()
     for i, name in enumerate(names, 1):
         print(f"studies: [{i}/{len(names)}] {name} ({a.mode}), {time.monotonic() - start:.0f} s "
               "so far", flush=True)
         STUDIES[name].run(ctx)
-    meta = {"mode": a.mode, "ranks": a.ranks, "cores": os.cpu_count(), "commit": commit(),
-            "date": datetime.datetime.now().isoformat(timespec="seconds"),
-            "elapsed": time.monotonic() - start, "studies": names,
-            "command": " ".join(["examples/studies/studies.py", f"--{a.mode}"] +
-                                (["--only", *a.only] if a.only else []))}
-    (a.out / "meta.json").write_text(json.dumps(meta, indent=1) + "\n")
+    command = " ".join(["examples/studies/studies.py", f"--{a.mode}"] +
+                       (["--only", *a.only] if a.only else []) +
+                       (["--scenes", *a.scenes] if a.scenes else []) +
+                       ([f"--timeout {a.timeout:g}"] if a.timeout_given else []))
+    # Several invocations may fill one folder (e.g. --only peers, then --only parallel): the
+    # report lists every one of them.
+    meta_path = a.out / "meta.json"
+    meta = json.loads(meta_path.read_text()) if meta_path.is_file() else {"runs": []}
+    if meta.get("mode", a.mode) != a.mode:
+        meta = {"runs": []}
+    meta.update(mode=a.mode, ranks=a.ranks, cores=os.cpu_count(), commit=commit())
+    meta["runs"].append({"command": command, "studies": names, "elapsed": time.monotonic() - start,
+                         "date": datetime.datetime.now().isoformat(timespec="seconds")})
+    meta_path.write_text(json.dumps(meta, indent=1) + "\n")
     path = report.Report(a.out).write()
-    print(f"studies: done in {meta['elapsed']:.0f} s; report: {path}")
+    print(f"studies: done in {time.monotonic() - start:.0f} s; report: {path}")
     return 0
 
 

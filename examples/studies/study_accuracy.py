@@ -66,7 +66,7 @@ def run(ctx):
                         "snes-boomeramg"))
     reference_refine = max(refines) + 2
     rows = []
-    for scene in ctx.pick(("trampoline",), SCENES):
+    for scene in ctx.scenes(("trampoline",), SCENES):
         ref = ctx.run(NAME, f"{scene}-reference-r{reference_refine}", scene, reference_refine,
                       with_tolerance("rmtr", ctx.source, 1e-7, ctx.pick(300, 20000))
                       + ["-mlshell_limit_csv", "1"])

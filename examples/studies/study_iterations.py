@@ -24,7 +24,7 @@ def rmtr_solve(ctx, scene, levels, refine=None):
 
 def run(ctx):
     rows = []
-    for scene in SCENES:
+    for scene in ctx.scenes(SCENES, SCENES):
         for refine in ctx.pick((0, 1), (0, 1, 2, 3, 4, 5)):
             rows.append({**solver_fields(tr_solve(ctx, scene, refine)), "solver": "tr",
                          "levels": 1})

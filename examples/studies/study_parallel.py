@@ -12,7 +12,7 @@ TOP_EVENTS = 12
 
 def run(ctx):
     rows, events = [], []
-    for scene in ctx.pick(("trampoline",), ("trampoline", "drooping")):
+    for scene in ctx.scenes(("trampoline",), ("trampoline", "drooping")):
         for refine in ctx.pick((2,), (4, 5)):
             for ranks in (1, 2):
                 r = ctx.run(NAME, f"{scene}-r{refine}-n{ranks}", scene, refine,

@@ -10,7 +10,7 @@ COLUMNS = ["scene", "solver", "refine", "dofs", "ranks", "iterations", "linear_i
 
 def run(ctx):
     rows = []
-    for scene in ctx.pick(("trampoline",), SCENES):
+    for scene in ctx.scenes(("trampoline",), SCENES):
         for refine in ctx.pick((1,), (4, 5)):
             for solver in ["rmtr"] + PEERS:
                 r = ctx.run(NAME, f"{scene}-r{refine}-{solver}", scene, refine,

@@ -12,7 +12,7 @@ def run(ctx):
     refine, levels = ctx.pick((1, 2), (3, 4))
     max_it = ctx.pick(300, 20000)
     rows = []
-    for scene in ctx.pick(("trampoline",), SCENES):
+    for scene in ctx.scenes(("trampoline",), SCENES):
         for projection in ("lsq", "reverse"):
             r = ctx.run(NAME, f"{scene}-{projection}", scene, refine,
                         with_tolerance("rmtr", ctx.source, 1e-7, max_it)

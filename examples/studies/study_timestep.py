@@ -14,7 +14,7 @@ def run(ctx):
     refine = ctx.pick(1, 2)
     steps = ctx.pick((TIMESTEPS[0], TIMESTEPS[-1]), TIMESTEPS)
     rows = []
-    for scene in ctx.pick(("trampoline",), SCENES):
+    for scene in ctx.scenes(("trampoline",), SCENES):
         for solver in SOLVERS:
             max_it = 100000 if solver == "tr" else 1000
             for inverse, dt in steps:

@@ -23,7 +23,7 @@ def work_units(result):
 def run(ctx):
     refine, levels = ctx.pick((1, 2), (2, 3))
     rows = []
-    for scene in ctx.pick(("trampoline", "drooping"), SCENES):
+    for scene in ctx.scenes(("trampoline", "drooping"), SCENES):
         # The same solves as the iterations study: remembered, not repeated.
         for solver, r in (("tr", tr_solve(ctx, scene, refine)),
                           ("rmtr", rmtr_solve(ctx, scene, levels, refine))):
