@@ -31,8 +31,14 @@ class Context:
         return self._memo[key]
 
     def write_csv(self, name, rows, columns):
-        """Writes OUT/<name>.csv (header `columns`), atomically; returns its path."""
+        """Writes OUT/<name>.csv (header `columns`), atomically; returns its path. Rows an
+        earlier invocation wrote for other scenes are kept (--scenes runs fill one table)."""
         path = self.out / f"{name}.csv"
+        if path.is_file():
+            old = read_csv(path)
+            mine = {r["scene"] for r in rows}
+            if old and list(old[0]) == columns:
+                rows = [r for r in old if r["scene"] not in mine] + list(rows)
         tmp = path.with_suffix(".csv.tmp")
         with open(tmp, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")

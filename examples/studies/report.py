@@ -246,8 +246,9 @@ class Report:
         if rows is None:
             return
         body = []
-        for scene, dofs in dict.fromkeys((r["scene"], r["dofs"]) for r in rows):
-            group = [r for r in rows if r["scene"] == scene and r["dofs"] == dofs]
+        for scene, refine in dict.fromkeys((r["scene"], r["refine"]) for r in rows):
+            group = [r for r in rows if r["scene"] == scene and r["refine"] == refine]
+            dofs = next((r["dofs"] for r in group if r["dofs"]), "")
             rm = find(group, solver="rmtr")
             t_rm = number(rm["wall_time"]) if rm and rm["converged"] == "1" else None
             best = None

@@ -27,7 +27,7 @@ def mpi_environment():
 
 
 class Runner:
-    def __init__(self, build, out, ranks=2, timeout=1800.0, verbose=True):
+    def __init__(self, build, out, ranks=2, timeout=1800.0, verbose=True, max_refine=8):
         self.mlshell = Path(build).resolve() / "mlshell"
         if not self.mlshell.is_file():
             sys.exit(f"studies: error: no mlshell executable at '{self.mlshell}' (build first: "
@@ -36,6 +36,7 @@ class Runner:
         self.ranks = ranks
         self.timeout = timeout
         self.verbose = verbose
+        self.max_refine = max_refine
 
     def scene_path(self, scene):
         path = SOURCE / "examples" / f"{scene}.yaml"
@@ -47,7 +48,7 @@ class Runner:
             log_view=False):
         """One step of `scene` at `refine` with the given PETSc options; returns a dict."""
         ranks = ranks or self.ranks
-        if refine > MAX_REFINE.get(scene, 8):
+        if refine > min(MAX_REFINE.get(scene, 8), self.max_refine):
             return {"study": study, "tag": tag, "scene": scene, "refine": refine, "ranks": ranks,
                     "dt": dt, "exit_code": None, "timed_out": False, "elapsed": 0.0,
                     "folder": None, "summary": None, "skipped": True}
@@ -100,7 +101,7 @@ def converged(result):
 def describe(result):
     s = result["summary"]
     if result.get("skipped"):
-        return "not run (finer than the scene's finest studied resolution)"
+        return "not run (finer than the scene's finest studied resolution or --max-refine)"
     if result["timed_out"]:
         return f"timed out after {result['elapsed']:.0f} s"
     if not s:
@@ -116,7 +117,7 @@ def solver_fields(result):
     s = result["summary"]
     base = {"scene": result["scene"], "refine": result["refine"], "ranks": result["ranks"]}
     if not s:
-        status = ("not run: above the scene's finest studied resolution" if result.get("skipped")
+        status = ("not run (finer than studied)" if result.get("skipped")
                   else "timeout" if result["timed_out"] else f"exit {result['exit_code']}")
         return {**base, "dofs": "", "iterations": "", "linear_iterations": "", "converged": 0,
                 "reason": status, "gradient_norm": "", "wall_time": "", "solve_time": ""}

@@ -51,6 +51,8 @@ def arguments(argv):
                    help=f"run only these ({', '.join(STUDIES)})")
     p.add_argument("--scenes", nargs="+", metavar="SCENE", choices=list(SCENES),
                    help=f"only these scenes ({', '.join(SCENES)}); default: each study's own")
+    p.add_argument("--max-refine", type=int, default=8, metavar="R",
+                   help="skip solves finer than geometry.refine R (e.g. 3: at most 3,675 dofs)")
     p.add_argument("--build", default=str(SOURCE / "build"), help="folder holding mlshell")
     p.add_argument("--out", help="output folder (default BUILD/studies-MODE)")
     p.add_argument("--ranks", type=int, default=2, help="MPI ranks per solve (default 2)")
@@ -85,7 +87,8 @@ def main(argv):
         print(f"wrote {report.Report(a.out).write()}")
         return 0
     names = a.only or list(STUDIES)
-    ctx = Context(Runner(a.build, a.out, a.ranks, a.timeout), a.mode, a.out, a.scenes)
+    ctx = Context(Runner(a.build, a.out, a.ranks, a.timeout,
+                         max_refine=a.max_refine), a.mode, a.out, a.scenes)
     start = time.monotonic()
     for i, name in enumerate(names, 1):
         print(f"studies: [{i}/{len(names)}] {name} ({a.mode}), {time.monotonic() - start:.0f} s "
@@ -94,7 +97,8 @@ def main(argv):
     command = " ".join(["examples/studies/studies.py", f"--{a.mode}"] +
                        (["--only", *a.only] if a.only else []) +
                        (["--scenes", *a.scenes] if a.scenes else []) +
-                       ([f"--timeout {a.timeout:g}"] if a.timeout_given else []))
+                       ([f"--timeout {a.timeout:g}"] if a.timeout_given else []) +
+                       ([f"--max-refine {a.max_refine}"] if a.max_refine < 8 else []))
     # Several invocations may fill one folder (e.g. --only peers, then --only parallel): the
     # report lists every one of them.
     meta_path = a.out / "meta.json"

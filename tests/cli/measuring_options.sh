@@ -49,11 +49,14 @@ h = [json.load(open(f"c{n}/summary.json"))["hessian"] for n in (1, 2)]
 for e in h:
     assert e["settled"] and 1e3 < e["condition"] < 1e12, e
     assert 0 < e["lambda_min"] < e["lambda_max"], e
-assert abs(h[0]["condition"] / h[1]["condition"] - 1) < 1e-6, h
+# The two solves stop at |g| < 1e-7 at slightly different iterates: agreement to 1e-5.
+assert abs(h[0]["condition"] / h[1]["condition"] - 1) < 1e-5, h
 rows = [list(csv.DictReader(open(f"c{n}/limit_surface.csv"))) for n in (1, 2)]
 assert len(rows[0]) == 64 * 9 == len(rows[1]), len(rows[0])  # 64 elements x 3x3 points
-assert max(abs(float(a["uz"]) - float(b["uz"])) for a, b in zip(*rows)) < 1e-9
-assert min(float(r["uz"]) for r in rows[0]) < -1e-3  # the trampoline sags
+sag = -min(float(r["uz"]) for r in rows[0])
+assert sag > 1e-3, sag  # the trampoline sags
+assert all(abs(float(a[c]) - float(b[c])) < 1e-12 for a, b in zip(*rows) for c in "XYZ")
+assert max(abs(float(a["uz"]) - float(b["uz"])) for a, b in zip(*rows)) < 1e-6 * sag
 PY
 
 echo "check: -log_view reports the Setup, Solve and Output stages"
