@@ -33,7 +33,7 @@ def seconds(v):
 
 
 def outcome(row, column="iterations"):
-    """A converged run's count, or why it stopped."""
+    """A converged run's count, or the count with why it stopped."""
     if row is None:
         return "not run"
     if row["dofs"] == "":
@@ -42,7 +42,8 @@ def outcome(row, column="iterations"):
         return count(row[column])
     g = number(row.get("gradient_norm"))
     why = row["reason"].replace("DIVERGED_", "").lower()
-    return f"stopped: {why}" + (f", {count(row[column])} its, \\|g\\| {g:.1e}" if g else "")
+    n = count(row[column])
+    return (f"{n} " if n else "") + f"(stopped: {why}" + (f", \\|g\\| {g:.1e}" if g else "") + ")"
 
 
 def paper_cell(v):
@@ -90,8 +91,8 @@ class Report:
             for refine in dofs:
                 r = find(tr, scene=scene, refine=refine)
                 ref = paper.TR_ITERATIONS[scene][refine] if refine < 6 else None
-                d = count(r["dofs"]) if r and r["dofs"] else "?"
-                line.append(f"{outcome(r)} / {paper_cell(ref)} ({d} dofs)")
+                d = f" ({count(r['dofs'])} dofs)" if r and r["dofs"] else ""
+                line.append(f"{outcome(r)} / {paper_cell(ref)}{d}")
             body.append(line)
         self.add("### Table 3: single-level TR iterations\n\n" + table(
             ["scene"] + [f"refine {k}" for k in dofs], body))
@@ -135,15 +136,15 @@ class Report:
                 a, b = number(tr[column]), number(rm[column])
                 ratio = f"{a / b:.2f}" if a and b else ""
                 p = ref[scene]
-                body.append([scene, kind, f"{outcome(tr, column)} / {p[0]:,}",
+                body.append([scene, count(tr["dofs"]), kind, f"{outcome(tr, column)} / {p[0]:,}",
                              f"{outcome(rm, column)} / {p[1]:,}", f"{ratio} / {p[0] / p[1]:.2f}",
                              f"{seconds(tr[column + '_per_iteration'])} / {p[2]}",
                              f"{seconds(rm[column + '_per_iteration'])} / {p[3]}"])
-        dofs = count(rows[0]["dofs"]) if rows else ""
-        self.add(f"## Tables 6–7: work units (eq. 7.3–7.4), {dofs} dofs\n\nmlshell / paper. "
+        self.add("## Tables 6–7: work units (eq. 7.3–7.4)\n\nmlshell / paper (1,083 dofs, RMTR "
+                 "on three levels). "
                  "One work unit is one assembly (or QP solve) on the finest level; coarse levels "
                  "count by their share of control points.\n\n" + table(
-                     ["scene", "work", "TR total", "RMTR total", "TR/RMTR", "TR per it",
+                     ["scene", "dofs", "work", "TR total", "RMTR total", "TR/RMTR", "TR per it",
                       "RMTR per cycle"], body))
 
     # --- Table 8 ----------------------------------------------------------------------------
@@ -197,15 +198,17 @@ class Report:
         scenes = list(dict.fromkeys(r["scene"] for r in rows))
         solvers = list(dict.fromkeys(r["solver"] for r in rows))
         tried = sorted({number(r["dt"]) for r in rows})
+        dofs = {r["scene"]: count(r["dofs"]) for r in rows if r["dofs"]}
 
         def cell(v):
             return "none" if v is None else ("1" if v == 1 else f"1/{round(1 / v)}")
         body = [[solver] + [cell(largest.get((s, solver))) for s in scenes] for solver in solvers]
         self.add("## Figure 10: largest dt that converges\n\nOne step from rest at dt ∈ {" +
-                 ", ".join(cell(t) for t in tried) + f"}}, {count(rows[0]['dofs'])} dofs. Paper: "
+                 ", ".join(cell(t) for t in tried) + "}, refine 2 (1,083 dofs; the re-entrant "
+                 "corner's finer cage: more). Paper (1,083 dofs): "
                  "the trust-region solvers converge at every dt for every scene; line search, "
                  "damped Newton and the linearized equation need smaller steps.\n\n" +
-                 table(["solver"] + scenes, body))
+                 table(["solver"] + [f"{s} ({dofs.get(s, '?')} dofs)" for s in scenes], body))
         self.image(plots.largest_timestep(largest, self.out))
 
     # --- accuracy vs time -------------------------------------------------------------------

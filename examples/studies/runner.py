@@ -76,6 +76,11 @@ class Runner:
             except subprocess.TimeoutExpired:
                 exit_code, timed_out = None, True
         elapsed = time.monotonic() - start
+        # The studies read summary.json, stdout, -log_view and limit_surface.csv; the frames
+        # and checkpoints (gigabytes over a full study) are not kept.
+        for pattern in ("*.h5", "*.obj", "*.xdmf", "checkpoint_*.bin"):
+            for heavy in folder.glob(pattern):
+                heavy.unlink()
         result = {"study": study, "tag": tag, "scene": scene, "refine": refine, "ranks": ranks,
                   "dt": dt, "exit_code": exit_code, "timed_out": timed_out, "elapsed": elapsed,
                   "folder": folder, "summary": None}
@@ -118,7 +123,8 @@ def solver_fields(result):
     base = {"scene": result["scene"], "refine": result["refine"], "ranks": result["ranks"]}
     if not s:
         status = ("not run (finer than studied)" if result.get("skipped")
-                  else "timeout" if result["timed_out"] else f"exit {result['exit_code']}")
+                  else f"timeout after {result['elapsed']:.0f} s" if result["timed_out"]
+                  else f"exit {result['exit_code']}")
         return {**base, "dofs": "", "iterations": "", "linear_iterations": "", "converged": 0,
                 "reason": status, "gradient_norm": "", "wall_time": "", "solve_time": ""}
     v = s["solver"]
