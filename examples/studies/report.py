@@ -106,7 +106,7 @@ class Report:
                 ref = paper.RMTR_CYCLES[scene][paper.LEVELS.index(lv)] \
                     if lv in paper.LEVELS else None
                 line.append(f"{outcome(r)} / {paper_cell(ref)}")
-                if r and ref:
+                if r and r["dofs"] and ref:  # a row not run is not compared
                     compared += 1
                     if r["converged"] == "1" and number(r["iterations"]) <= ref:
                         met += 1

@@ -103,7 +103,7 @@ def main(argv):
     # report lists every one of them.
     meta_path = a.out / "meta.json"
     meta = json.loads(meta_path.read_text()) if meta_path.is_file() else {"runs": []}
-    if meta.get("mode", a.mode) != a.mode:
+    if meta.get("mode", a.mode) != a.mode or not isinstance(meta.get("runs"), list):
         meta = {"runs": []}
     meta.update(mode=a.mode, ranks=a.ranks, cores=os.cpu_count(), commit=commit())
     meta["runs"].append({"command": command, "studies": names, "elapsed": time.monotonic() - start,

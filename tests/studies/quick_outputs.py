@@ -4,6 +4,7 @@ columns and the expected rows (one per case the quick mode defines), the numbers
 trampoline run must have are there, the plots are PNG files and REPORT.md names every study.
 
 usage: quick_outputs.py BUILD_DIR WORK_DIR"""
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -87,6 +88,8 @@ def main(argv):
     if len(argv) != 3:
         sys.exit(__doc__.strip().splitlines()[-1])
     build, out = Path(argv[1]), Path(argv[2])
+    # Files of an earlier run must not pass for this run's output.
+    shutil.rmtree(out, ignore_errors=True)
     code = subprocess.run([sys.executable, str(SOURCE / "examples/studies/studies.py"), "--quick",
                            "--build", str(build), "--out", str(out)]).returncode
     if code != 0:
