@@ -1,12 +1,12 @@
 // The Lanczos estimate of extreme eigenvalues and cond₂ (hessian_spectrum.hpp) on matrices with
 // known spectra.
+#include "mlshell/hessian_spectrum.hpp"
+
 #include <gtest/gtest.h>
 #include <petscmat.h>
 
 #include <cmath>
 #include <vector>
-
-#include "mlshell/hessian_spectrum.hpp"
 
 namespace mlshell {
 namespace {
