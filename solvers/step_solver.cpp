@@ -1,8 +1,10 @@
 // TAO as the step solver (see step_solver.hpp for the defaults).
 #include "mlshell/step_solver.hpp"
 
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace mlshell {
 
@@ -34,12 +36,18 @@ PetscErrorCode hessian_jacobian(SNES, Vec u, Mat H, Mat, void* ctx) {
   return static_cast<LevelProblem*>(ctx)->hessian(u, H);
 }
 
-/// Sets `name` to `value` unless the user already gave it (the command line wins).
-PetscErrorCode default_option(const char* name, const char* value) {
-  PetscBool set;
+/// Sets each option `prefix + name` to its value unless the user already gave it (the command
+/// line wins).
+PetscErrorCode default_options(
+    const std::string& prefix,
+    std::initializer_list<std::pair<const char*, const char*>> defaults) {
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsHasName(nullptr, nullptr, name, &set));
-  if (!set) PetscCall(PetscOptionsSetValue(nullptr, name, value));
+  for (const auto& [name, value] : defaults) {
+    const std::string option = prefix + name;
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &set));
+    if (!set) PetscCall(PetscOptionsSetValue(nullptr, option.c_str(), value));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -67,15 +75,15 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
   MPI_Comm comm = problem.layout().comm();
   PetscCallAbort(comm, problem.create_matrix(&H_));
   if (uses_snes()) {
-    PetscCallAbort(comm, default_option("-snes_type", "newtonls"));
-    PetscCallAbort(comm, default_option("-snes_atol", "1e-7"));
-    PetscCallAbort(comm, default_option("-snes_rtol", "1e-10"));
-    PetscCallAbort(comm, default_option("-snes_stol", "0"));
-    PetscCallAbort(comm, default_option("-snes_max_it", "1000"));
-    PetscCallAbort(comm, default_option("-snes_max_funcs", "1000000"));
-    PetscCallAbort(comm, default_option("-ksp_type", "preonly"));
-    PetscCallAbort(comm, default_option("-pc_type", "lu"));
-    PetscCallAbort(comm, default_option("-pc_factor_mat_solver_type", "mumps"));
+    PetscCallAbort(comm, default_options("-", {{"snes_type", "newtonls"},
+                                               {"snes_atol", "1e-7"},
+                                               {"snes_rtol", "1e-10"},
+                                               {"snes_stol", "0"},
+                                               {"snes_max_it", "1000"},
+                                               {"snes_max_funcs", "1000000"},
+                                               {"ksp_type", "preonly"},
+                                               {"pc_type", "lu"},
+                                               {"pc_factor_mat_solver_type", "mumps"}}));
     PetscCallAbort(comm, SNESCreate(comm, &snes_));
     PetscCallAbort(comm, MatCreateVecs(H_, &residual_, nullptr));
     PetscCallAbort(comm, SNESSetFunction(snes_, residual_, gradient_residual, &problem_));
@@ -83,15 +91,15 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
     PetscCallAbort(comm, SNESSetFromOptions(snes_));
     return;
   }
-  PetscCallAbort(comm, default_option("-tao_type", "rmtr"));
-  PetscCallAbort(comm, default_option("-tao_gatol", "1e-7"));
-  PetscCallAbort(comm, default_option("-tao_gttol", "1e-10"));
-  PetscCallAbort(comm, default_option("-tao_grtol", "0"));
-  PetscCallAbort(comm, default_option("-tao_max_it", "1000"));
   // RMTR's own default smoother is the paper's ten STCG iterations; on cloth they stall on
   // fine-scale bending modes (trampoline, 1,083 dofs: |g| = 3e-3 after 200 V-cycles), while
   // Dogleg smoothing converges in 3. See petsc-options/rmtr-paper.yaml for the paper's setup.
-  PetscCallAbort(comm, default_option("-tao_rmtr_smoother_qp", "dogleg"));
+  PetscCallAbort(comm, default_options("-tao_", {{"type", "rmtr"},
+                                                 {"gatol", "1e-7"},
+                                                 {"gttol", "1e-10"},
+                                                 {"grtol", "0"},
+                                                 {"max_it", "1000"},
+                                                 {"rmtr_smoother_qp", "dogleg"}}));
   PetscCallAbort(comm, register_trust_region_tao_types());
   PetscCallAbort(comm, register_newton_baseline_tao_types());
   PetscCallAbort(comm, TaoCreate(comm, &tao_));
@@ -107,10 +115,10 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
   if (ksp) {
     const char* prefix = nullptr;
     PetscCallAbort(comm, KSPGetOptionsPrefix(ksp, &prefix));
-    const std::string p = std::string("-") + (prefix ? prefix : "");
-    PetscCallAbort(comm, default_option((p + "ksp_type").c_str(), "stcg"));
-    PetscCallAbort(comm, default_option((p + "pc_type").c_str(), "lu"));
-    PetscCallAbort(comm, default_option((p + "pc_factor_mat_solver_type").c_str(), "mumps"));
+    PetscCallAbort(comm, default_options(std::string("-") + (prefix ? prefix : ""),
+                                         {{"ksp_type", "stcg"},
+                                          {"pc_type", "lu"},
+                                          {"pc_factor_mat_solver_type", "mumps"}}));
     PetscCallAbort(comm, KSPSetFromOptions(ksp));
   }
   if (levels && type() == "rmtr") PetscCallAbort(comm, rmtr_set_levels(tao_, levels));
@@ -143,8 +151,8 @@ PetscErrorCode StepSolver::solve_snes(Vec u, SolveReport& report) {
   PetscCall(SNESGetIterationNumber(snes_, &its));
   PetscCall(SNESGetLinearSolveIterations(snes_, &lits));
   PetscReal f;
-  PetscCall(problem_.objective(u, &f, residual_));
-  PetscCall(VecNorm(residual_, NORM_2, &report.gradient_norm));
+  PetscCall(problem_.objective(u, &f, nullptr));
+  PetscCall(SNESGetFunctionNorm(snes_, &report.gradient_norm));
   report.converged = reason > 0;
   report.reason = SNESConvergedReasons[reason];
   report.iterations = static_cast<int>(its);

@@ -150,16 +150,6 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                                     {"assembly_work_units", Json(rmtr_totals_.assembly_work_units)},
                                     {"qp_work_units", Json(rmtr_totals_.qp_work_units)}}));
     }
-    Json::Object hessian;
-    if (spectrum_)
-      hessian = Json::Object{
-          {"lambda_min", Json(spectrum_->lambda_min)},
-          {"lambda_max", Json(spectrum_->lambda_max)},
-          {"condition", Json(spectrum_->condition)},
-          {"method", Json(std::string("Lanczos with full reorthogonalisation on H and on H^-1 "
-                                      "(MUMPS LDL^T), ") +
-                          std::to_string(spectrum_->steps) + " steps")},
-          {"settled", Json(spectrum_->converged)}};
     Json::Object top{{"scene", Json(scene_.name)},
                      {"status", Json(status)},
                      {"dofs", Json(disc_->num_dofs())},
@@ -171,7 +161,17 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                      {"probes", Json(probes)},
                      {"solver", Json(solver)},
                      {"wall_time", Json(MPI_Wtime() - wall_start_)}};
-    if (spectrum_) top.emplace_back("hessian", Json(hessian));
+    if (spectrum_)
+      top.emplace_back(
+          "hessian",
+          Json(Json::Object{
+              {"lambda_min", Json(spectrum_->lambda_min)},
+              {"lambda_max", Json(spectrum_->lambda_max)},
+              {"condition", Json(spectrum_->condition)},
+              {"method", Json(std::string("Lanczos with full reorthogonalisation on H and on "
+                                          "H^-1 (MUMPS LDL^T), ") +
+                              std::to_string(spectrum_->steps) + " steps")},
+              {"settled", Json(spectrum_->converged)}}));
     const Json summary(std::move(top));
     write_file_atomic(output_->dir / "summary.json", summary.dump() + "\n");
   }
