@@ -22,6 +22,7 @@ PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, Pet
   PetscReal f0;
   PetscCall(level_.objective(x0_, &f0, delta_g_));          // ∇f(x₀)
   PetscCall(VecAYPX(delta_g_, -1.0, restricted_gradient));  // δg = R∇h_fine − ∇f(x₀)
+  PetscCall(VecNorm(delta_g_, NORM_2, &delta_g_norm_));
   if (h0) *h0 = f0;
   PetscFunctionReturn(0);
 }
@@ -33,6 +34,9 @@ PetscErrorCode CoarseLevelModel::objective(Vec x, PetscReal* h, Vec g) {
   PetscReal coupling;
   PetscCall(VecDot(delta_g_, work_, &coupling));
   *h += coupling;
+  PetscReal step;
+  PetscCall(VecNorm(work_, NORM_2, &step));
+  linear_error_ = 8.0 * PETSC_MACHINE_EPSILON * delta_g_norm_ * step;
   if (g) PetscCall(VecAXPY(g, 1.0, delta_g_));
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,8 @@
 // Local_TR, paper Alg. 4.1 (see local_trust_region.hpp).
 #include "mlshell/local_trust_region.hpp"
 
+#include <petsc/private/taoimpl.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -9,7 +11,7 @@ namespace mlshell {
 
 PetscReal TrustRegionParameters::updated_radius(PetscReal rho, PetscReal delta,
                                                 PetscReal step_norm) const {
-  if (!(rho > eta1)) return gamma1 * std::min(delta, step_norm > 0 ? step_norm : delta);
+  if (!(rho > eta1)) return gamma1 * delta;
   // Capped far beyond any meaningful step (and the 1e15 of eq. 7.1) so that it never overflows.
   if (rho > eta2) return std::min<PetscReal>(gamma2 * delta, 1e30);
   return delta;
@@ -23,6 +25,46 @@ PetscErrorCode TrustRegionParameters::validate(MPI_Comm comm, const char* who) c
   PetscCheck(gamma1 > 0 && gamma1 < 1 && gamma2 > 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "%s: need 0 < gamma1 < 1 < gamma2, got gamma1 = %g and gamma2 = %g", who,
              (double)gamma1, (double)gamma2);
+  PetscFunctionReturn(0);
+}
+
+bool StoppingRule::stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal f_error,
+                             PetscReal dx, PetscReal xnorm) const {
+  if (!(delta > 1e15)) return false;
+  return std::abs(df) <= std::max(stagnation * std::abs(f), f_error) || dx <= stagnation * xnorm;
+}
+
+bool StoppingRule::collapsed(PetscReal delta, PetscReal xnorm) const {
+  return delta < min_radius * std::max<PetscReal>(1.0, xnorm);
+}
+
+void StoppingRule::end_collapsed(Tao tao, PetscReal gnorm, PetscReal g0, bool* limiting) const {
+  PetscReal gatol, grtol, gttol;
+  TaoGetTolerances(tao, &gatol, &grtol, &gttol);
+  const PetscReal tolerance = std::max(gatol, gttol * g0);
+  *limiting = gnorm <= limiting_factor * tolerance;
+  tao->reason = *limiting ? TAO_CONVERGED_USER : TAO_DIVERGED_TR_REDUCTION;
+}
+
+PetscErrorCode StoppingRule::options(PetscOptionItems* PetscOptionsObject,
+                                     const std::string& prefix) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsReal((prefix + "stagnation").c_str(),
+                             "eq. (7.1): relative floor on |df| and |dx| once the radius is > 1e15",
+                             "", stagnation, &stagnation, nullptr));
+  PetscCall(PetscOptionsReal((prefix + "min_radius").c_str(),
+                             "relative radius at which the solve stops", "", min_radius,
+                             &min_radius, nullptr));
+  PetscCall(PetscOptionsReal((prefix + "limiting_factor").c_str(),
+                             "a radius collapse with |g| below this times the gradient tolerance "
+                             "is convergence at the limiting accuracy",
+                             "", limiting_factor, &limiting_factor, nullptr));
+  PetscCheck(stagnation >= 0 && min_radius > 0 && limiting_factor >= 1, PETSC_COMM_WORLD,
+             PETSC_ERR_ARG_OUTOFRANGE,
+             "%sstagnation must be >= 0, %smin_radius > 0 and %slimiting_factor >= 1; got %g, %g "
+             "and %g",
+             prefix.c_str(), prefix.c_str(), prefix.c_str(), (double)stagnation,
+             (double)min_radius, (double)limiting_factor);
   PetscFunctionReturn(0);
 }
 
@@ -48,6 +90,7 @@ LocalTrustRegion::LocalTrustRegion(Objective& f, Vec like, Mat H, std::unique_pt
   PetscCallAbort(comm, VecDuplicate(like, &g_));
   PetscCallAbort(comm, VecDuplicate(like, &s_));
   PetscCallAbort(comm, VecDuplicate(like, &trial_));
+  PetscCallAbort(comm, VecDuplicate(like, &g_trial_));
 }
 
 LocalTrustRegion::~LocalTrustRegion() {
@@ -55,6 +98,7 @@ LocalTrustRegion::~LocalTrustRegion() {
   VecDestroy(&g_);
   VecDestroy(&s_);
   VecDestroy(&trial_);
+  VecDestroy(&g_trial_);
 }
 
 PetscErrorCode LocalTrustRegion::level_norm(Vec v, PetscReal* norm) const {
@@ -138,7 +182,16 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
     PetscCall(VecWAXPY(trial_, 1.0, s_, x_));
     PetscCall(f_.objective(trial_, &ft, nullptr));
     ++counters_.objectives;
-    if (std::isfinite(ft)) it->rho = (fx_ - ft) / model_decrease;
+    PetscReal actual = fx_ - ft;
+    if (std::isfinite(ft) && model_decrease < 1e3 * f_.evaluation_error()) {
+      PetscCall(f_.objective(trial_, &ft, g_trial_));
+      PetscReal gs, gts;
+      PetscCall(VecDot(g_, s_, &gs));
+      PetscCall(VecDot(g_trial_, s_, &gts));
+      actual = -0.5 * (gs + gts);
+      it->trapezoidal = true;
+    }
+    if (std::isfinite(ft)) it->rho = actual / model_decrease;
   }
   if (it->rho > p.eta1) {
     const PetscReal f_old = fx_;

@@ -122,6 +122,7 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
     PetscCallAbort(comm, KSPSetFromOptions(ksp));
   }
   if (levels && type() == "rmtr") PetscCallAbort(comm, rmtr_set_levels(tao_, levels));
+  PetscCallAbort(comm, trust_region_set_error_source(tao_, &problem_));
 }
 
 StepSolver::~StepSolver() {
@@ -173,7 +174,7 @@ PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   PetscInt lits = 0;
   PetscCall(TaoGetLinearSolveIterations(tao_, &lits));
   report.converged = reason > 0;
-  report.reason = TaoConvergedReasons[reason];
+  report.reason = trust_region_converged_reason(tao_);
   report.iterations = static_cast<int>(its);
   report.linear_iterations = static_cast<int>(lits);
   report.energy = f;

@@ -11,7 +11,13 @@ namespace mlshell {
 
 class TaoObjective final : public Objective {
  public:
-  explicit TaoObjective(Tao tao) : tao_(tao) {}
+  /// `error_source` (may be null) is the objective behind the Tao's callbacks, asked for the
+  /// rounding error of the last value.
+  explicit TaoObjective(Tao tao, const Objective* error_source = nullptr)
+      : tao_(tao), error_source_(error_source) {}
+  PetscReal evaluation_error() const override {
+    return error_source_ ? error_source_->evaluation_error() : 0.0;
+  }
   PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
     return g ? TaoComputeObjectiveAndGradient(tao_, x, f, g) : TaoComputeObjective(tao_, x, f);
   }
@@ -22,6 +28,7 @@ class TaoObjective final : public Objective {
 
  private:
   Tao tao_;
+  const Objective* error_source_;
 };
 
 }  // namespace mlshell

@@ -4,9 +4,15 @@
 
 #include <petsctao.h>
 
+#include "mlshell/objective.hpp"
+
 namespace mlshell {
 
 PetscErrorCode register_rmtr_tao_type();
+/// Whether the last RMTR solve ended at the limiting accuracy.
+bool rmtr_reached_limiting_accuracy(Tao tao);
+/// The objective behind the finest level's callbacks (for its rounding-error estimate).
+PetscErrorCode rmtr_set_error_source(Tao tao, const Objective* source);
 
 /// Raises PETSC_ERR_ARG_WRONG unless `tao` is of the given type (for type-specific accessors).
 inline PetscErrorCode require_tao_type(Tao tao, const char* type) {

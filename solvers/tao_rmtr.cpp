@@ -14,9 +14,11 @@
 // After every step on a coarse level the radius is capped so that the level's iterates stay
 // within the finer radius: with d = ‖x − x₀‖_l, Δ ← min(Δ₊, Δ^{l+1} − d), and the level stops
 // when d > (1 − ε^Δ) Δ^{l+1} (Alg. 4.3). A level also stops when ‖∇h^l‖ ≤ ε_g (-tao_gatol).
-// Stopping: TAO's tolerances on the finest gradient (eq. 7.1, first part), |Δf| or ‖Δx‖ over a
-// V-cycle below -tao_rmtr_stagnation while Δ > 1e15 (eq. 7.1, second part), or the radius
-// shrinking below -tao_rmtr_min_radius · max(1, ‖x‖) (DIVERGED_TR_REDUCTION).
+// Stopping: TAO's tolerances on the finest gradient (eq. 7.1, first part), then StoppingRule
+// (local_trust_region.hpp) on the finest level: |Δf| or ‖Δx‖ over a V-cycle below
+// -tao_rmtr_stagnation relative to |f| and ‖x‖ while Δ > 1e15 (eq. 7.1, second part), or the
+// radius shrinking below -tao_rmtr_min_radius · max(1, ‖x‖): CONVERGED_LIMITING_ACCURACY if ‖g‖
+// is within -tao_rmtr_limiting_factor (100) of the tolerance, else DIVERGED_TR_REDUCTION.
 //
 // Options (Table 2 defaults):
 //   -tao_rmtr_levels <all>           number of levels used (the finest ones of the hierarchy)
@@ -71,7 +73,10 @@ struct RmtrContext {
   MultilevelObjective* hierarchy = nullptr;
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0;
-  PetscReal delta0 = 1.0, eps_delta = 1e-3, stagnation = 1e-12, min_radius = 1e-14;
+  PetscReal delta0 = 1.0, eps_delta = 1e-3;
+  StoppingRule stopping;
+  bool limiting = false;  // the last solve ended at the limiting accuracy
+  const Objective* error_source = nullptr;
   PetscBool monitor = PETSC_FALSE, check_consistency = PETSC_FALSE;
   TrustRegionParameters params;
   std::unique_ptr<TaoObjective> finest;
@@ -119,7 +124,7 @@ PetscErrorCode setup(Tao tao) {
   const char* prefix = nullptr;
   PetscCall(TaoGetOptionsPrefix(tao, &prefix));
   const std::string p = prefix ? prefix : "";
-  c->finest = std::make_unique<TaoObjective>(tao);
+  c->finest = std::make_unique<TaoObjective>(tao, c->error_source);
   c->levels.resize(n);
   const int L = n - 1;
   for (int l = 0; l <= L; ++l) {
@@ -325,6 +330,8 @@ PetscErrorCode solve(Tao tao) {
   c->stats.levels.resize(c->levels.size());
   PetscCall(top.tr->start(tao->solution));
   PetscReal delta = c->delta0;
+  const PetscReal g0 = top.tr->gradient_norm();
+  c->limiting = false;
   tao->reason = TAO_CONTINUE_ITERATING;
   if (!top.tr->finite()) {  // nothing to iterate on: say so instead of producing NaN
     tao->reason = TAO_DIVERGED_NAN;
@@ -342,8 +349,8 @@ PetscErrorCode solve(Tao tao) {
   while (tao->reason == TAO_CONTINUE_ITERATING) {
     PetscReal xnorm;
     PetscCall(VecNorm(top.tr->solution(), NORM_2, &xnorm));
-    if (delta < c->min_radius * std::max<PetscReal>(1.0, xnorm)) {
-      tao->reason = TAO_DIVERGED_TR_REDUCTION;
+    if (c->stopping.collapsed(delta, xnorm)) {
+      c->stopping.end_collapsed(tao, top.tr->gradient_norm(), g0, &c->limiting);
       break;
     }
     const PetscReal f_old = top.tr->value();
@@ -367,11 +374,14 @@ PetscErrorCode solve(Tao tao) {
     PetscCall(TaoMonitor(tao, tao->niter, f, gnorm, 0.0, delta));
     PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
     // Eq. (7.1), second part: Newton-like regime and no more progress in floating point.
-    if (tao->reason == TAO_CONTINUE_ITERATING && delta > 1e15 && f < f_old) {
-      PetscReal dx;
+    if (tao->reason == TAO_CONTINUE_ITERATING && f < f_old) {
+      PetscReal dx, xnorm_new;
       PetscCall(VecAXPY(previous, -1.0, top.tr->solution()));
       PetscCall(VecNorm(previous, NORM_2, &dx));
-      if (f_old - f < c->stagnation || dx < c->stagnation) tao->reason = TAO_CONVERGED_STEPTOL;
+      PetscCall(VecNorm(top.tr->solution(), NORM_2, &xnorm_new));
+      if (c->stopping.stagnated(delta, f_old - f, f, top.objective->evaluation_error(), dx,
+                                xnorm_new))
+        tao->reason = TAO_CONVERGED_STEPTOL;
     }
   }
   PetscCall(VecDestroy(&previous));
@@ -405,10 +415,7 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(trust_region_parameter_options(PetscOptionsObject, "-tao_rmtr_", &c->params));
   PetscCall(PetscOptionsReal("-tao_rmtr_eps_delta", "coarse-correction threshold (Alg. 4.3)", "",
                              c->eps_delta, &c->eps_delta, nullptr));
-  PetscCall(PetscOptionsReal("-tao_rmtr_stagnation", "eq. (7.1) floor on |df| and |dx|", "",
-                             c->stagnation, &c->stagnation, nullptr));
-  PetscCall(PetscOptionsReal("-tao_rmtr_min_radius", "relative radius at which the solve stops", "",
-                             c->min_radius, &c->min_radius, nullptr));
+  PetscCall(c->stopping.options(PetscOptionsObject, "-tao_rmtr_"));
   PetscCall(PetscOptionsBool("-tao_rmtr_monitor", "one line per V-cycle", "", c->monitor,
                              &c->monitor, nullptr));
   PetscCall(PetscOptionsBool("-tao_rmtr_check_consistency",
@@ -527,6 +534,20 @@ PetscErrorCode rmtr_set_levels(Tao tao, MultilevelObjective* levels) {
   auto* c = static_cast<RmtrContext*>(tao->data);
   destroy_levels(*c);
   c->hierarchy = levels;
+  PetscFunctionReturn(0);
+}
+
+bool rmtr_reached_limiting_accuracy(Tao tao) {
+  return static_cast<RmtrContext*>(tao->data)->limiting;
+}
+
+PetscErrorCode rmtr_set_error_source(Tao tao, const Objective* source) {
+  PetscFunctionBeginUser;
+  PetscCall(require_tao_type(tao, "rmtr"));
+  auto* c = static_cast<RmtrContext*>(tao->data);
+  c->error_source = source;
+  c->finest.reset();
+  destroy_levels(*c);
   PetscFunctionReturn(0);
 }
 

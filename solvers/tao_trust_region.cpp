@@ -9,9 +9,11 @@
 //
 // A trial point x + s is accepted when ρ = (f(x) − f(x+s)) / (m(0) − m(s)) > η₁; derivatives are
 // reassembled only after an accepted step, so a rejected step reuses the Hessian (and the
-// Dogleg factorisation). Stopping: TAO's tolerances (-tao_gatol ...), plus the second part of
-// eq. (7.1): |Δf| or ‖s‖ below -tao_tr_stagnation (1e-12) while Δ > 1e15; the radius shrinking
-// below -tao_tr_min_radius (1e-14 · max(1, ‖x‖)) ends the solve with DIVERGED_TR_REDUCTION.
+// Dogleg factorisation). Stopping: TAO's tolerances (-tao_gatol ...), plus StoppingRule
+// (local_trust_region.hpp): the second part of eq. (7.1), relative (-tao_tr_stagnation 1e-12),
+// and the radius collapsing below -tao_tr_min_radius (1e-14 · max(1, ‖x‖)), which is convergence
+// at the limiting accuracy (CONVERGED_LIMITING_ACCURACY) if ‖g‖ is within
+// -tao_tr_limiting_factor (100) of the gradient tolerance, and DIVERGED_TR_REDUCTION otherwise.
 #include <petsc/private/taoimpl.h>
 
 #include <algorithm>
@@ -33,7 +35,9 @@ struct TrContext {
   PetscInt stcg_max_it = 10;
   PetscReal delta0 = 1.0;
   TrustRegionParameters params;
-  PetscReal stagnation = 1e-12, min_radius = 1e-14;
+  StoppingRule stopping;
+  bool limiting = false;  // the last solve ended at the limiting accuracy
+  const Objective* error_source = nullptr;
   std::unique_ptr<TaoObjective> objective;
   std::unique_ptr<LocalTrustRegion> tr;
   TrustRegionStatistics stats;
@@ -56,7 +60,7 @@ PetscErrorCode setup(Tao tao) {
     else
       qp = std::make_unique<SteihaugTointQp>(comm, p + "tao_tr_stcg_",
                                              static_cast<int>(ctx->stcg_max_it));
-    ctx->objective = std::make_unique<TaoObjective>(tao);
+    ctx->objective = std::make_unique<TaoObjective>(tao, ctx->error_source);
     ctx->tr = std::make_unique<LocalTrustRegion>(*ctx->objective, tao->solution, tao->hessian,
                                                  std::move(qp));
   }
@@ -70,6 +74,8 @@ PetscErrorCode solve(Tao tao) {
   tr.reset_counters();
   PetscReal delta = ctx->delta0, xnorm;
   PetscCall(tr.start(tao->solution));
+  const PetscReal g0 = tr.gradient_norm();
+  ctx->limiting = false;
   tao->reason = TAO_CONTINUE_ITERATING;
   if (!tr.finite()) {  // nothing to iterate on: say so instead of producing NaN
     tao->reason = TAO_DIVERGED_NAN;
@@ -82,8 +88,8 @@ PetscErrorCode solve(Tao tao) {
   PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
   while (tao->reason == TAO_CONTINUE_ITERATING) {
     PetscCall(VecNorm(tr.solution(), NORM_2, &xnorm));
-    if (delta < ctx->min_radius * std::max<PetscReal>(1.0, xnorm)) {
-      tao->reason = TAO_DIVERGED_TR_REDUCTION;
+    if (ctx->stopping.collapsed(delta, xnorm)) {
+      ctx->stopping.end_collapsed(tao, tr.gradient_norm(), g0, &ctx->limiting);
       break;
     }
     TrustRegionIteration it;
@@ -97,9 +103,12 @@ PetscErrorCode solve(Tao tao) {
     PetscCall(TaoMonitor(tao, tao->niter, tr.value(), tr.gradient_norm(), 0.0, delta));
     PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
     // Eq. (7.1), second part: Newton-like regime and no more progress in floating point.
-    if (tao->reason == TAO_CONTINUE_ITERATING && it.accepted && delta > 1e15 &&
-        (std::abs(it.decrease) < ctx->stagnation || it.step_norm < ctx->stagnation))
-      tao->reason = TAO_CONVERGED_STEPTOL;
+    if (tao->reason == TAO_CONTINUE_ITERATING && it.accepted) {
+      PetscCall(VecNorm(tr.solution(), NORM_2, &xnorm));
+      if (ctx->stopping.stagnated(delta, it.decrease, tr.value(),
+                                  tr.objective().evaluation_error(), it.step_norm, xnorm))
+        tao->reason = TAO_CONVERGED_STEPTOL;
+    }
   }
   const TrustRegionCounters& c = tr.counters();
   ctx->stats = TrustRegionStatistics{c.accepted, c.qp_solves, c.objectives, c.hessians};
@@ -118,10 +127,7 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(
       PetscOptionsReal("-tao_tr_delta0", "initial radius", "", ctx->delta0, &ctx->delta0, nullptr));
   PetscCall(trust_region_parameter_options(PetscOptionsObject, "-tao_tr_", &ctx->params));
-  PetscCall(PetscOptionsReal("-tao_tr_stagnation", "eq. (7.1) floor on |df| and |s|", "",
-                             ctx->stagnation, &ctx->stagnation, nullptr));
-  PetscCall(PetscOptionsReal("-tao_tr_min_radius", "relative radius at which the solve stops", "",
-                             ctx->min_radius, &ctx->min_radius, nullptr));
+  PetscCall(ctx->stopping.options(PetscOptionsObject, "-tao_tr_"));
   PetscOptionsHeadEnd();
   PetscCall(ctx->params.validate(PetscObjectComm((PetscObject)tao), "-tao_type tr"));
   PetscCheck(ctx->delta0 > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
@@ -172,6 +178,29 @@ PetscErrorCode register_trust_region_tao_types() {
     PetscCall(register_rmtr_tao_type());
   }
   registered = true;
+  PetscFunctionReturn(0);
+}
+
+std::string trust_region_converged_reason(Tao tao) {
+  TaoType type;
+  TaoGetType(tao, &type);
+  const std::string t = type ? type : "";
+  bool limiting = false;
+  if (t == "tr") limiting = static_cast<TrContext*>(tao->data)->limiting;
+  if (t == "rmtr") limiting = rmtr_reached_limiting_accuracy(tao);
+  if (limiting) return "CONVERGED_LIMITING_ACCURACY";
+  TaoConvergedReason reason;
+  TaoGetConvergedReason(tao, &reason);
+  return TaoConvergedReasons[reason];
+}
+
+PetscErrorCode trust_region_set_error_source(Tao tao, const Objective* source) {
+  PetscFunctionBeginUser;
+  TaoType type;
+  PetscCall(TaoGetType(tao, &type));
+  const std::string t = type ? type : "";
+  if (t == "tr") static_cast<TrContext*>(tao->data)->error_source = source;
+  if (t == "rmtr") PetscCall(rmtr_set_error_source(tao, source));
   PetscFunctionReturn(0);
 }
 

@@ -21,10 +21,12 @@ class CoarseLevelModel final : public Objective {
   PetscErrorCode initialize(Vec x0, Vec restricted_gradient, PetscReal* f0 = nullptr);
   PetscErrorCode objective(Vec x, PetscReal* h, Vec g) override;
   PetscErrorCode hessian(Vec x, Mat H) override { return level_.hessian(x, H); }
+  PetscReal evaluation_error() const override { return level_.evaluation_error() + linear_error_; }
 
  private:
   Objective& level_;
   Vec x0_ = nullptr, delta_g_ = nullptr, work_ = nullptr;
+  PetscReal delta_g_norm_ = 0.0, linear_error_ = 0.0;  // rounding of ⟨δg, x − x₀⟩
 };
 
 }  // namespace mlshell

@@ -25,6 +25,8 @@ class ShellElasticTerm final : public EnergyTerm {
                    const MaterialSpec& material);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
+  /// Where this rank's material points lie in the material model at displacement u (local).
+  void inspect(const std::vector<double>& u, MaterialReport& report) const;
 
  private:
   struct Element {
@@ -32,11 +34,15 @@ class ShellElasticTerm final : public EnergyTerm {
     ElementBasis basis;
     int first_reference;
   };
+  /// δ_p = Σ_i B_p,i u_i at quadrature point g, for p = 1, 2, 11, 12, 22.
+  void surface_quantities(const Element& e, int g, const std::vector<double>& u,
+                          double delta[15]) const;
   const Discretization& disc_;
   std::vector<Element> elements_;
   std::vector<ShellReference> references_;  // per element and quadrature point
   std::unique_ptr<Material> material_;
   ShellSection section_;
+  double rounding_;  // Material::rounding_factor, for the energy's error estimate
 };
 
 /// Implicit Euler inertia ρ/(2 dt²) ∫ |u − û|² dA with the predictor û = u_n + dt v_n.

@@ -19,18 +19,22 @@
 namespace mlshell {
 
 /// Neumaier's compensated summation: energies are sums of many terms of both signs whose
-/// differences the trust-region ratio needs accurately.
+/// differences the trust-region ratio needs accurately. It also sums the pieces' magnitudes,
+/// weighted by how many roundings of their own size each piece carries (`error_weight`): the
+/// rounding error of the total is about ε times magnitude() (Objective::evaluation_error).
 class CompensatedSum {
  public:
-  void add(double x) {
+  void add(double x, double error_weight = 1.0) {
     const double t = sum_ + x;
     comp_ += std::abs(sum_) >= std::abs(x) ? (sum_ - t) + x : (x - t) + sum_;
     sum_ = t;
+    magnitude_ += error_weight * std::abs(x);
   }
   double value() const { return sum_ + comp_; }
+  double magnitude() const { return magnitude_; }
 
  private:
-  double sum_ = 0.0, comp_ = 0.0;
+  double sum_ = 0.0, comp_ = 0.0, magnitude_ = 0.0;
 };
 
 class EnergyTerm {

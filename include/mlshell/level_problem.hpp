@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mlshell/energy_term.hpp"
+#include "mlshell/material.hpp"
 #include "mlshell/objective.hpp"
 
 namespace mlshell {
@@ -32,11 +33,15 @@ class LevelProblem final : public Objective {
   /// material's domain) is reported as +inf so that trust-region and line-search methods reject
   /// the step instead of propagating NaN.
   PetscErrorCode objective(Vec u, PetscReal* f, Vec g) override;
+  /// 8 ε Σ_pieces w |e| over every element, sample and node of the last objective().
+  PetscReal evaluation_error() const override { return evaluation_error_; }
   /// ∇²f(u), assembled into H (created by create_matrix).
   PetscErrorCode hessian(Vec u, Mat H) override;
   PetscErrorCode create_matrix(Mat* H) const { return layout_.create_matrix(H); }
   /// Global energy of each term at u, in the order of terms().
   PetscErrorCode term_energies(Vec u, std::vector<double>& energies);
+  /// Where the material points of the elastic term lie in the material model at u (all ranks).
+  PetscErrorCode material_report(Vec u, MaterialReport& report);
   /// Energy of each term, the total f(u) and ‖∇f(u)‖₂ at u (for reports).
   PetscErrorCode report(Vec u, std::vector<double>& energies, PetscReal* total, PetscReal* gnorm);
 
@@ -50,6 +55,7 @@ class LevelProblem final : public Objective {
   std::vector<std::unique_ptr<EnergyTerm>> terms_;
   std::vector<double> u_local_, g_local_;
   long objective_evaluations_ = 0, hessian_evaluations_ = 0, inadmissible_evaluations_ = 0;
+  PetscReal evaluation_error_ = 0.0;
 };
 
 }  // namespace mlshell

@@ -9,11 +9,19 @@
 // The radius may be measured in a level norm other than ℓ₂ (RMTR's ‖·‖_l, eq. 4.9): the QP is
 // then given the ℓ₂ radius Δ·‖g‖₂/‖g‖_l, and a step still longer than Δ in the level norm is
 // shortened along its own direction (which keeps m(s) < 0), so ‖s‖_l ≤ Δ always holds.
+//
+// Near the round-off floor the actual reduction f(x) − f(x+s) is the difference of two values
+// each carrying an error of Objective::evaluation_error(); once the predicted reduction is below
+// 1000 times that error, the actual reduction is taken as −½ (∇f(x) + ∇f(x+s))ᵀ s instead (the
+// trapezoidal rule: exact for a quadratic, error O(‖s‖³), and its rounding is that of the
+// gradients, far smaller), so ρ stays meaningful down to the limiting accuracy.
 #pragma once
 
 #include <functional>
 #include <memory>
 #include <string>
+
+#include <petsctao.h>
 
 #include "mlshell/objective.hpp"
 #include "mlshell/trust_region_qp.hpp"
@@ -28,6 +36,27 @@ struct TrustRegionParameters {
   PetscReal updated_radius(PetscReal rho, PetscReal delta, PetscReal step_norm) const;
   /// Raises PETSC_ERR_ARG_OUTOFRANGE unless 0 < η₁ < η₂ < 1 and 0 < γ₁ < 1 < γ₂.
   PetscErrorCode validate(MPI_Comm comm, const char* who) const;
+};
+
+/// How a trust-region solve (TR, or RMTR on its finest level) ends besides TAO's tolerances
+/// (paper eq. 7.1 and §7.2).
+///   - Stagnation, the second part of (7.1): once Δ > 1e15 (Newton's regime), an accepted
+///     iteration with |Δf| ≤ s·|f| (or below the evaluation error of f) or ‖Δx‖ ≤ s·‖x‖. The
+///     paper's absolute 1e-12 is relative here, so that it holds for any units and size.
+///   - Radius collapse, Δ < r·max(1, ‖x‖): no step lowers f in floating point. If ‖g‖ is within
+///     `limiting_factor` of the gradient tolerance, the solve has reached the limiting accuracy
+///     of f (its round-off floor) and converged; otherwise it failed (DIVERGED_TR_REDUCTION).
+struct StoppingRule {
+  PetscReal stagnation = 1e-12, min_radius = 1e-14, limiting_factor = 100.0;
+  bool stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal f_error, PetscReal dx,
+                 PetscReal xnorm) const;
+  bool collapsed(PetscReal delta, PetscReal xnorm) const;
+  /// Sets tao->reason after a collapse at gradient norm `gnorm` (‖g₀‖ = `g0` at the start):
+  /// TAO_CONVERGED_USER (reported as CONVERGED_LIMITING_ACCURACY, *limiting = true) or
+  /// TAO_DIVERGED_TR_REDUCTION.
+  void end_collapsed(Tao tao, PetscReal gnorm, PetscReal g0, bool* limiting) const;
+  /// Reads `<prefix>stagnation`, `min_radius`, `limiting_factor` and checks them.
+  PetscErrorCode options(PetscOptionItems* PetscOptionsObject, const std::string& prefix);
 };
 
 /// Reads `<prefix>eta1`, `eta2`, `gamma1`, `gamma2` inside a PetscOptionsBegin/End block.
@@ -55,6 +84,7 @@ struct TrustRegionIteration {
   PetscReal rho = 0.0;        ///< eq. (4.2); −inf when the trial point was not evaluated
   PetscReal step_norm = 0.0;  ///< ‖s‖ in the level norm
   PetscReal decrease = 0.0;   ///< f(x) − f(x+s) if accepted, else 0
+  bool trapezoidal = false;   ///< the actual reduction came from the gradients
   QpResult qp;
 };
 
@@ -97,7 +127,7 @@ class LocalTrustRegion {
   Mat H_;
   std::unique_ptr<TrustRegionQp> qp_;
   LevelNorm norm_;
-  Vec x_ = nullptr, g_ = nullptr, s_ = nullptr, trial_ = nullptr;
+  Vec x_ = nullptr, g_ = nullptr, s_ = nullptr, trial_ = nullptr, g_trial_ = nullptr;
   PetscReal fx_ = 0.0, gnorm_ = 0.0;
   bool finite_ = false;
   TrustRegionCounters counters_;

@@ -5,47 +5,87 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <memory>
+#include <vector>
 
+#include "mlshell/response_function.hpp"
 #include "mlshell/scene.hpp"
 
 namespace mlshell {
 
 using Strain3 = Eigen::Vector3d;
 
+/// Where one material point's strain lies in a fitted model (end-of-step reports).
+struct MaterialPointStatus {
+  bool beyond_fit = false;        ///< an argument of some φ_j lies in its continuation
+  bool coupling_limited = false;  ///< the coupling limit changed the energy here
+};
+
+/// Counts over material points (every Gauss point in the plane and through the thickness).
+struct MaterialReport {
+  long points = 0;
+  long beyond_fit = 0;        ///< points with an argument in a φ_j continuation
+  long coupling_limited = 0;  ///< points where the coupling limit acts
+  long negative = 0;          ///< points with ψ < 0
+  double min_energy_density = INFINITY;  ///< min ψ (Pa)
+  void add(const MaterialPointStatus& s, double psi) {
+    ++points;
+    beyond_fit += s.beyond_fit;
+    coupling_limited += s.coupling_limited;
+    negative += psi < 0.0;
+    if (psi < min_energy_density) min_energy_density = psi;
+  }
+};
+
 class Material {
  public:
   virtual ~Material() = default;
-  /// ψ (Pa) at strain e; fills ∂ψ/∂e and ∂²ψ/∂e² when the pointers are non-null.
+  /// ψ (Pa) at strain e; fills ∂ψ/∂e and ∂²ψ/∂e² when the pointers are non-null. Finite and C²
+  /// for every finite strain.
   virtual double energy_density(const Strain3& e, Eigen::Vector3d* grad,
                                 Eigen::Matrix3d* hess) const = 0;
+  virtual MaterialPointStatus status(const Strain3& e) const { return {}; }
+  /// Rounding errors in ψ, in units of ε ψ: more than 1 where ψ is a sum of large terms of
+  /// both signs (the mu of Table 1 reach 4,618 for φ'(0) = 1). Used for the error estimate of f.
+  virtual double rounding_factor() const { return 8.0; }
 };
 
-/// Orthotropic woven-cloth material of Clyde, Teran and Tamstorf (paper eq. 3.3–3.4):
-///   ψ = k1/2 φ1(Ẽ11²) + k2 φ2(Ẽ11 Ẽ22) + k3/2 φ3(Ẽ22²) + k4 φ4(Ẽ12²),
-///   φ_j(u) = Σ_i μ_ji/α_ji ((u+1)^α_ji − 1).
-/// (u+1)^α − 1 is evaluated as expm1(α log1p(u)): the exponents reach −12 802.
+/// Orthotropic woven-cloth material of Clyde, Teran and Tamstorf (paper eq. 3.3):
+///   ψ = A + C + B + k4 φ4(Ẽ12²),  A = k1/2 φ1(Ẽ11²),  B = k3/2 φ3(Ẽ22²),  C = k2 φ2(Ẽ11 Ẽ22),
+/// with the response functions φ_j of eq. (3.4), continued beyond their fitted range
+/// (response_function.hpp).
 ///
-/// Domain of validity: a fitted φ_j need not be monotone. Table 1's φ_3 (denim weft) has
-/// φ_3' < 0 beyond u ≈ 0.10 (|Ẽ22| ≈ 0.32) and φ_3 → −∞, because its largest exponent
-/// (α_34 = 30.07) has a negative coefficient. The energy would be unbounded below and a solver
-/// can run away into that region. The model is therefore defined only where every φ_j' > 0:
-/// u_j ≤ u_j^max, the first zero of φ_j', and where ψ ≥ 0 (the linear φ_2 = Ẽ11 Ẽ22 term lets
-/// the fit go negative at large compression-tension strains). Outside, ψ = +∞, so trial points
-/// there are rejected (it acts as a strain limit at the edge of the fitted range).
+/// Coupling limit. Table 1's fit, completed with Σ_i μ_ji = 1, is not positive: φ1' and φ3'
+/// soften to about 0.35 by 3 % strain while C = k2 Ẽ11 Ẽ22 stays bilinear, so ψ has a negative
+/// well (ψ_min = −0.0205 MPa near Ẽ = (±0.115, ∓0.11, 0); free cloth collapses into it). With
+/// the limit enabled (preset `denim`), C is replaced by C·s(ρ), where
+///   ρ = |C| / (θ_b 2√(AB)) = k2 |φ2(w)/w| / (θ_b √(k1 k3 r1(u1) r3(u3))),   r_j(u) = φ_j(u)/u,
+/// (u1 = Ẽ11², u3 = Ẽ22², w = Ẽ11 Ẽ22; the second form is smooth where Ẽ11 or Ẽ22 vanishes), and
+///   s = 1 for ρ ≤ x0 = θ_o/θ_b,  s = [x0 + (1 − x0) tanh((ρ − x0)/(1 − x0))] / ρ beyond,
+/// which is C² at ρ = x0. Hence |C s| < θ_b 2√(AB) and, by Cauchy–Schwarz,
+///   ψ ≥ (1 − θ_b)(A + B) + k4 φ4 > 0 for every Ẽ ≠ 0.
+/// The coupling vanishes when Ẽ11 or Ẽ22 does, so the uniaxial warp, weft and shear responses
+/// are exactly Table 1's, and at small strain ρ = k2/(θ_b √(k1 k3)) = 0.763 < x0 = 0.833 for
+/// denim (θ_o = 0.75, θ_b = 0.9), so the tangent at Ẽ = 0 is Table 1's too.
 class ClydeOrthotropicMaterial final : public Material {
  public:
+  /// Throws std::invalid_argument if a φ_j cannot be continued (ResponseFunction).
   explicit ClydeOrthotropicMaterial(const ClydeMaterial& p);
-  /// u_j^max (infinity if φ_j' stays positive).
-  double argument_limit(int j) const { return limit_[j]; }
   double energy_density(const Strain3& e, Eigen::Vector3d* grad,
                         Eigen::Matrix3d* hess) const override;
-  /// φ_j and its first two derivatives at u.
-  void phi(int j, double u, double& f, double& df, double& ddf) const;
+  MaterialPointStatus status(const Strain3& e) const override;
+  /// max_j Σ_i |μ_ji| / φ_j'(0): the cancellation in φ_j at small strain.
+  double rounding_factor() const override;
+  /// φ_j (j = 0..3 for φ1..φ4), as used (continued).
+  const ResponseFunction& phi(int j) const { return phi_[j]; }
 
  private:
+  /// The coupling factor s(ρ) with its gradient and Hessian in (Ẽ11, Ẽ22); false if s = 1.
+  bool coupling_factor(double e11, double e22, double& s, Eigen::Vector2d& ds,
+                       Eigen::Matrix2d& dds, bool derivatives) const;
   ClydeMaterial p_;
-  std::array<double, 4> limit_;
+  std::vector<ResponseFunction> phi_;
 };
 
 /// Isotropic St. Venant–Kirchhoff in plane stress:

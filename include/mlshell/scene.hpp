@@ -63,10 +63,19 @@ struct GeometrySpec {
 /// (3.3)–(3.4). With a preset, k/d/mu/alpha come from the preset; any of k, mu, alpha may be given
 /// explicitly instead (then all four phi_j must be given: `mu: [[...],[...],[...],[...]]`, same for
 /// alpha).
+/// Limit on the coupling term k2 φ2(Ẽ11 Ẽ22) relative to the Cauchy–Schwarz bound 2√(AB) of
+/// the uncoupled energies A = k1/2 φ1(Ẽ11²), B = k3/2 φ3(Ẽ22²) (material.hpp): unchanged up to
+/// `onset`·2√(AB), smoothly saturating towards `bound`·2√(AB), 0 < onset < bound < 1.
+struct CouplingLimit {
+  bool enabled = false;
+  double onset = 0.75, bound = 0.9;
+};
+
 struct ClydeMaterial {
   std::array<double, 4> k{};                 ///< Pa (the paper's Table 1 gives MPa)
   std::array<std::vector<double>, 4> mu;     ///< mu_ji, i = 1..d_j
   std::array<std::vector<double>, 4> alpha;  ///< alpha_ji
+  CouplingLimit coupling_limit;
 };
 
 /// `{model: isotropic-svk, youngs_modulus: E, poisson_ratio: nu, thickness, density}`
@@ -77,7 +86,7 @@ struct SvkMaterial {
 
 struct MaterialSpec {
   std::variant<ClydeMaterial, SvkMaterial> model;
-  std::string preset;        ///< "denim" or empty
+  std::string preset;        ///< "denim", "denim-table1" or empty
   double thickness = 0.0;    ///< m, > 0
   double density = 0.0;      ///< area density kg/m², >= 0
   Vec3 warp{1.0, 0.0, 0.0};  ///< projected onto the reference tangent plane: material direction o1
@@ -85,7 +94,12 @@ struct MaterialSpec {
 };
 
 /// Table 1 of the paper (denim), in SI units (k converted from MPa to Pa), with mu_j1 completed
-/// so that sum_i mu_ji = 1 (phi_j'(0) = 1). See DESIGN.md "Material and shell kinematics".
+/// so that sum_i mu_ji = 1 (phi_j'(0) = 1), and nothing else: preset `denim-table1`. Its energy
+/// has a negative well (psi_min = -0.0205 MPa near E~ = (0.115, -0.11, 0); see material.hpp).
+ClydeMaterial denim_table1_preset();
+/// Preset `denim` (the default of the examples): Table 1 with the coupling limit
+/// {onset 0.75, bound 0.9}, so that psi > 0 for every strain E~ != 0 while the uniaxial warp,
+/// weft and shear responses and the small-strain tangent stay Table 1's.
 ClydeMaterial denim_preset();
 
 // ----------------------------------------------------------------------------------------------

@@ -41,6 +41,8 @@ class ShellSection {
   /// W and its derivatives in s = (ε11, ε12, ε22, κ11, κ12, κ22).
   double energy(const ShellReference& ref, const Vector6& s, Vector6* g, Matrix6* H) const;
   double thickness() const { return thickness_; }
+  /// Adds the status and ψ of every through-thickness point at strains s to the report.
+  void inspect(const ShellReference& ref, const Vector6& s, MaterialReport& report) const;
 
  private:
   const Material& material_;

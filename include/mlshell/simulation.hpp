@@ -102,6 +102,10 @@ class Simulation {
   long total_linear_iterations_ = 0;
   double solve_time_ = 0.0;  ///< seconds in the steps' solves (no setup, no output)
   RmtrStatistics rmtr_totals_;
+  MaterialReport material_final_;  // the last step's solution
+  long steps_beyond_fit_ = 0, steps_negative_ = 0;
+  double min_energy_density_ = INFINITY;  // over all steps' solutions
+  PetscErrorCode report_material(int step);
   bool all_converged_ = true;
   int steps_done_ = 0;
   std::optional<SpectrumEstimate> spectrum_;

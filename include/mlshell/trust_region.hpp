@@ -6,6 +6,7 @@
 
 #include <petsctao.h>
 
+#include <string>
 #include <vector>
 
 #include "mlshell/multilevel_objective.hpp"
@@ -58,6 +59,14 @@ PetscErrorCode rmtr_statistics(Tao tao, RmtrStatistics* stats);
 
 /// Registers the TAO types "dampednewton" and "linearized" (idempotent).
 PetscErrorCode register_newton_baseline_tao_types();
+
+/// Why the last solve of `tao` stopped: TAO's reason, or CONVERGED_LIMITING_ACCURACY when a
+/// "tr" or "rmtr" solve ended at the round-off floor (StoppingRule, local_trust_region.hpp).
+std::string trust_region_converged_reason(Tao tao);
+
+/// Tells a "tr" or "rmtr" solver which objective its callbacks evaluate, so that it can ask
+/// for the rounding error of f (no effect on other types). Call before TaoSetUp.
+PetscErrorCode trust_region_set_error_source(Tao tao, const Objective* source);
 
 /// Statistics of the last solve of a Tao of type "tr".
 PetscErrorCode trust_region_statistics(Tao tao, TrustRegionStatistics* stats);

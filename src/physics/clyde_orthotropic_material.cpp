@@ -1,4 +1,6 @@
-// Paper eq. (3.3)–(3.4): the orthotropic woven-cloth energy density.
+// Paper eq. (3.3): the orthotropic woven-cloth energy density, with the coupling limit that
+// makes it positive (material.hpp derives it).
+#include <algorithm>
 #include <cmath>
 
 #include "mlshell/material.hpp"
@@ -6,79 +8,109 @@
 namespace mlshell {
 
 ClydeOrthotropicMaterial::ClydeOrthotropicMaterial(const ClydeMaterial& p) : p_(p) {
-  // First zero of φ_j' on u ≥ 0 (j = 2, argument Ẽ11 Ẽ22, may also be negative: check both
-  // directions down to u = −0.99).
-  for (int j = 0; j < 4; ++j) {
-    limit_[j] = INFINITY;
-    double f, df, ddf;
-    auto increasing = [&](double u) {
-      phi(j, u, f, df, ddf);
-      return df > 0.0;
-    };
-    // Coarse scan up to u = 100 (strain 10), then bisection to the first zero of φ_j'.
-    for (double u = 1e-3; u <= 100.0; u *= 1.01) {
-      if (increasing(u)) continue;
-      double lo = u / 1.01, hi = u;
-      for (int it = 0; it < 60; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (increasing(mid) ? lo : hi) = mid;
-      }
-      limit_[j] = lo;
-      break;
-    }
-  }
+  for (int j = 0; j < 4; ++j) phi_.emplace_back(p.mu[j], p.alpha[j], /*signed=*/j == 1, j + 1);
 }
 
-void ClydeOrthotropicMaterial::phi(int j, double u, double& f, double& df, double& ddf) const {
-  // φ(u) = Σ μ/α ((1+u)^α − 1), φ' = Σ μ (1+u)^(α−1), φ'' = Σ μ (α−1) (1+u)^(α−2).
-  const double l = std::log1p(u);
-  f = df = ddf = 0.0;
-  const auto& mu = p_.mu[j];
-  const auto& alpha = p_.alpha[j];
-  for (size_t i = 0; i < mu.size(); ++i) {
-    const double a = alpha[i];
-    if (a == 1.0) {  // linear term: exact for any u (log1p would fail for u <= -1)
-      f += mu[i] * u;
-      df += mu[i];
-      continue;
-    }
-    f += mu[i] / a * std::expm1(a * l);
-    const double p1 = std::exp((a - 1.0) * l);
-    df += mu[i] * p1;
-    ddf += mu[i] * (a - 1.0) * p1 / (1.0 + u);
-  }
+bool ClydeOrthotropicMaterial::coupling_factor(double e11, double e22, double& s,
+                                               Eigen::Vector2d& ds, Eigen::Matrix2d& dds,
+                                               bool derivatives) const {
+  const CouplingLimit& lim = p_.coupling_limit;
+  s = 1.0;
+  if (!lim.enabled) return false;
+  const auto& k = p_.k;
+  const double w = e11 * e22;
+  const PhiValue r1 = phi_[0].ratio(e11 * e11), r3 = phi_[2].ratio(e22 * e22),
+                 q = phi_[1].ratio(w);
+  if (q.f == 0.0) return false;
+  // ln ρ = ln κ + ln|q(w)| − ½ ln r1(u1) − ½ ln r3(u3),  κ = k2 / (θ_b √(k1 k3)).
+  const double rho = k[1] / (lim.bound * std::sqrt(k[0] * k[2])) * std::abs(q.f) /
+                     std::sqrt(r1.f * r3.f);
+  const double x0 = lim.onset / lim.bound;
+  if (!(rho > x0)) return false;
+  const double width = 1.0 - x0, th = std::tanh((rho - x0) / width), sech2 = 1.0 - th * th;
+  const double sat = x0 + width * th;
+  s = sat / rho;
+  if (!derivatives) return true;
+  const double ds_rho = (sech2 - s) / rho;
+  const double dds_rho = (-2.0 * th * sech2 / width - 2.0 * ds_rho) / rho;
+  const double Lu1 = -0.5 * r1.df / r1.f, Lu3 = -0.5 * r3.df / r3.f, Lw = q.df / q.f;
+  const double Lu1u1 = -0.5 * (r1.ddf / r1.f - (r1.df / r1.f) * (r1.df / r1.f));
+  const double Lu3u3 = -0.5 * (r3.ddf / r3.f - (r3.df / r3.f) * (r3.df / r3.f));
+  const double Lww = q.ddf / q.f - Lw * Lw;
+  const Eigen::Vector2d dL(2.0 * e11 * Lu1 + e22 * Lw, 2.0 * e22 * Lu3 + e11 * Lw);
+  Eigen::Matrix2d ddL;
+  ddL(0, 0) = 4.0 * e11 * e11 * Lu1u1 + 2.0 * Lu1 + e22 * e22 * Lww;
+  ddL(1, 1) = 4.0 * e22 * e22 * Lu3u3 + 2.0 * Lu3 + e11 * e11 * Lww;
+  ddL(0, 1) = ddL(1, 0) = w * Lww + Lw;
+  // ρ = e^L: ∇ρ = ρ ∇L, ∇²ρ = ρ (∇²L + ∇L ∇Lᵀ); then s(ρ) by the chain rule.
+  const Eigen::Vector2d drho = rho * dL;
+  const Eigen::Matrix2d ddrho = rho * (ddL + dL * dL.transpose());
+  ds = ds_rho * drho;
+  dds = dds_rho * drho * drho.transpose() + ds_rho * ddrho;
+  return true;
 }
 
 double ClydeOrthotropicMaterial::energy_density(const Strain3& e, Eigen::Vector3d* grad,
                                                 Eigen::Matrix3d* hess) const {
   const double e11 = e[0], e22 = e[1], e12 = e[2];
   const auto& k = p_.k;
-  // Arguments u_j and their derivatives in e: u1 = e11², u2 = e11 e22, u3 = e22², u4 = e12².
-  const double u[4] = {e11 * e11, e11 * e22, e22 * e22, e12 * e12};
-  for (int j = 0; j < 4; ++j)
-    if (std::abs(u[j]) > limit_[j]) return INFINITY;  // outside the fitted domain
-  double f[4], d[4], dd[4];
-  phi(0, e11 * e11, f[0], d[0], dd[0]);
-  phi(1, e11 * e22, f[1], d[1], dd[1]);
-  phi(2, e22 * e22, f[2], d[2], dd[2]);
-  phi(3, e12 * e12, f[3], d[3], dd[3]);
-  const double c[4] = {0.5 * k[0], k[1], 0.5 * k[2], k[3]};
+  const PhiValue p1 = phi_[0](e11 * e11), p2 = phi_[1](e11 * e22), p3 = phi_[2](e22 * e22),
+                 p4 = phi_[3](e12 * e12);
+  // Coupling C = k2 φ2(w) and its derivatives in (Ẽ11, Ẽ22).
+  const double C = k[1] * p2.f;
+  const Eigen::Vector2d dw(e22, e11);
+  const Eigen::Vector2d dC = k[1] * p2.df * dw;
+  Eigen::Matrix2d ddC = k[1] * p2.ddf * dw * dw.transpose();
+  ddC(0, 1) += k[1] * p2.df;
+  ddC(1, 0) += k[1] * p2.df;
+  double s;
+  Eigen::Vector2d ds = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d dds = Eigen::Matrix2d::Zero();
+  const bool limited = coupling_factor(e11, e22, s, ds, dds, grad || hess);
+  const double psi = 0.5 * k[0] * p1.f + 0.5 * k[2] * p3.f + k[3] * p4.f + C * s;
   if (grad) {
-    (*grad)[0] = c[0] * d[0] * 2.0 * e11 + c[1] * d[1] * e22;
-    (*grad)[1] = c[2] * d[2] * 2.0 * e22 + c[1] * d[1] * e11;
-    (*grad)[2] = c[3] * d[3] * 2.0 * e12;
+    Eigen::Vector2d g = s * dC;
+    if (limited) g += C * ds;
+    (*grad)[0] = k[0] * p1.df * e11 + g[0];
+    (*grad)[1] = k[2] * p3.df * e22 + g[1];
+    (*grad)[2] = 2.0 * k[3] * p4.df * e12;
   }
   if (hess) {
+    Eigen::Matrix2d h = s * ddC;
+    if (limited) h += dC * ds.transpose() + ds * dC.transpose() + C * dds;
     Eigen::Matrix3d& H = *hess;
     H.setZero();
-    H(0, 0) = c[0] * (dd[0] * 4.0 * e11 * e11 + 2.0 * d[0]) + c[1] * dd[1] * e22 * e22;
-    H(1, 1) = c[2] * (dd[2] * 4.0 * e22 * e22 + 2.0 * d[2]) + c[1] * dd[1] * e11 * e11;
-    H(0, 1) = H(1, 0) = c[1] * (dd[1] * e11 * e22 + d[1]);
-    H(2, 2) = c[3] * (dd[3] * 4.0 * e12 * e12 + 2.0 * d[3]);
+    // d²/de² [k/2 φ(e²)] = k (2 e² φ'' + φ').
+    H(0, 0) = k[0] * (2.0 * e11 * e11 * p1.ddf + p1.df) + h(0, 0);
+    H(1, 1) = k[2] * (2.0 * e22 * e22 * p3.ddf + p3.df) + h(1, 1);
+    H(0, 1) = H(1, 0) = h(0, 1);
+    H(2, 2) = 2.0 * k[3] * (2.0 * e12 * e12 * p4.ddf + p4.df);
   }
-  const double psi = c[0] * f[0] + c[1] * f[1] + c[2] * f[2] + c[3] * f[3];
-  // A strain energy density is non-negative; where the fit gives ψ < 0 it is outside its domain.
-  return psi >= 0.0 ? psi : INFINITY;
+  return psi;
+}
+
+double ClydeOrthotropicMaterial::rounding_factor() const {
+  double factor = 8.0;
+  for (int j = 0; j < 4; ++j) {
+    double sum = 0.0, abs_sum = 0.0;
+    for (double m : p_.mu[j]) {
+      sum += m;
+      abs_sum += std::abs(m);
+    }
+    factor = std::max(factor, 8.0 * abs_sum / sum);
+  }
+  return factor;
+}
+
+MaterialPointStatus ClydeOrthotropicMaterial::status(const Strain3& e) const {
+  MaterialPointStatus st;
+  st.beyond_fit = phi_[0].continued(e[0] * e[0]) || phi_[1].continued(e[0] * e[1]) ||
+                  phi_[2].continued(e[1] * e[1]) || phi_[3].continued(e[2] * e[2]);
+  double s;
+  Eigen::Vector2d ds;
+  Eigen::Matrix2d dds;
+  st.coupling_limited = coupling_factor(e[0], e[1], s, ds, dds, false);
+  return st;
 }
 
 }  // namespace mlshell

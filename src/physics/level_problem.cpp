@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "mlshell/effects.hpp"
+
 namespace mlshell {
 
 LevelProblem::LevelProblem(const ParallelLayout& layout) : layout_(layout) {}
@@ -24,9 +26,11 @@ PetscErrorCode LevelProblem::objective(Vec u, PetscReal* f, Vec g) {
     PetscCall(t->add(u_local_, local, g ? &g_local_ : nullptr, nullptr));
     PetscCall(PetscLogEventEnd(t->log_event(), 0, 0, 0, 0));
   }
-  // Sum the ranks' compensated partial sums (value and correction separately).
-  double mine = local.value(), total = 0.0;
-  PetscCallMPI(MPI_Allreduce(&mine, &total, 1, MPI_DOUBLE, MPI_SUM, layout_.comm()));
+  // Sum the ranks' compensated partial sums and the magnitudes of their pieces.
+  double mine[2] = {local.value(), local.magnitude()}, sums[2] = {0.0, 0.0};
+  PetscCallMPI(MPI_Allreduce(mine, sums, 2, MPI_DOUBLE, MPI_SUM, layout_.comm()));
+  const double total = sums[0];
+  evaluation_error_ = 8.0 * PETSC_MACHINE_EPSILON * sums[1];
   *f = std::isfinite(total) ? total : PETSC_INFINITY;
   if (!std::isfinite(total)) ++inadmissible_evaluations_;
   if (g) {
@@ -69,6 +73,21 @@ PetscErrorCode LevelProblem::term_energies(Vec u, std::vector<double>& energies)
   energies.assign(mine.size(), 0.0);
   PetscCallMPI(MPI_Allreduce(mine.data(), energies.data(), static_cast<int>(mine.size()),
                              MPI_DOUBLE, MPI_SUM, layout_.comm()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::material_report(Vec u, MaterialReport& report) {
+  PetscFunctionBeginUser;
+  PetscCall(layout_.to_local(u, u_local_));
+  MaterialReport mine;
+  if (const auto* elastic = find_term<ShellElasticTerm>()) elastic->inspect(u_local_, mine);
+  long counts[4] = {mine.points, mine.beyond_fit, mine.coupling_limited, mine.negative};
+  long sums[4];
+  PetscCallMPI(MPI_Allreduce(counts, sums, 4, MPI_LONG, MPI_SUM, layout_.comm()));
+  double min_psi;
+  PetscCallMPI(
+      MPI_Allreduce(&mine.min_energy_density, &min_psi, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
+  report = MaterialReport{sums[0], sums[1], sums[2], sums[3], min_psi};
   PetscFunctionReturn(0);
 }
 

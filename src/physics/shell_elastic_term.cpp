@@ -1,5 +1,6 @@
 // Membrane and bending energy of the shell: quadrature of shell_point_energy over the elements.
 #include <Eigen/Dense>
+#include <algorithm>
 
 #include "mlshell/effects.hpp"
 
@@ -10,7 +11,8 @@ ShellElasticTerm::ShellElasticTerm(const Discretization& disc, const ParallelLay
     : EnergyTerm("elastic"),
       disc_(disc),
       material_(make_material(material)),
-      section_(*material_, material.thickness, material.thickness_points) {
+      section_(*material_, material.thickness, material.thickness_points),
+      rounding_(material_->rounding_factor()) {
   const Eigen::Vector3d warp(material.warp[0], material.warp[1], material.warp[2]);
   const auto& X = disc.mesh().points;
   const int ng = disc.num_quadrature_points();
@@ -30,6 +32,29 @@ ShellElasticTerm::ShellElasticTerm(const Discretization& disc, const ParallelLay
   }
 }
 
+void ShellElasticTerm::surface_quantities(const Element& e, int g, const std::vector<double>& u,
+                                          double delta[15]) const {
+  std::fill(delta, delta + 15, 0.0);
+  for (int p = 0; p < 5; ++p) {
+    const double* w = e.basis.slot(g, kDu + p);
+    for (int i = 0; i < e.basis.size; ++i)
+      for (int c = 0; c < 3; ++c) delta[3 * p + c] += w[i] * u[3 * e.nodes[i] + c];
+  }
+}
+
+void ShellElasticTerm::inspect(const std::vector<double>& u, MaterialReport& report) const {
+  const int ng = disc_.num_quadrature_points();
+  for (const Element& e : elements_)
+    for (int g = 0; g < ng; ++g) {
+      double delta[15];
+      surface_quantities(e, g, u, delta);
+      Vector6 s;
+      const ShellReference& ref = references_[e.first_reference + g];
+      shell_strains(ref, delta, s, nullptr, nullptr, nullptr);
+      section_.inspect(ref, s, report);
+    }
+}
+
 PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSum& energy,
                                      std::vector<double>* grad, Mat hess) const {
   PetscFunctionBeginUser;
@@ -43,17 +68,12 @@ PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSu
     if (grad) ge.assign(3 * n, 0.0);
     if (hess) He.assign(9 * n * n, 0.0);
     for (int g = 0; g < ng; ++g) {
-      // δ_p = Σ_i B_p,i u_i for p = 1, 2, 11, 12, 22.
-      double delta[15] = {};
-      for (int p = 0; p < 5; ++p) {
-        const double* w = e.basis.slot(g, kDu + p);
-        for (int i = 0; i < n; ++i)
-          for (int c = 0; c < 3; ++c) delta[3 * p + c] += w[i] * u[3 * e.nodes[i] + c];
-      }
+      double delta[15];
+      surface_quantities(e, g, u, delta);
       const double qw = disc_.quadrature_weight(g);
       const double W = shell_point_energy(references_[e.first_reference + g], section_, delta,
                                           grad ? &g15 : nullptr, hess ? &H15 : nullptr);
-      energy.add(qw * W);
+      energy.add(qw * W, rounding_);
       if (grad)
         for (int p = 0; p < 5; ++p) {
           const double* w = e.basis.slot(g, kDu + p);

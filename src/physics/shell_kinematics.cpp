@@ -73,6 +73,14 @@ double ShellSection::energy(const ShellReference& ref, const Vector6& s, Vector6
   return W;
 }
 
+void ShellSection::inspect(const ShellReference& ref, const Vector6& s,
+                           MaterialReport& report) const {
+  for (double z : z_) {
+    const Strain3 e = ref.T * (s.head<3>() + z * s.tail<3>());
+    report.add(material_.status(e), material_.energy_density(e, nullptr, nullptr));
+  }
+}
+
 namespace {
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& x) {

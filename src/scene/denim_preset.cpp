@@ -4,7 +4,7 @@
 
 namespace mlshell {
 
-ClydeMaterial denim_preset() {
+ClydeMaterial denim_table1_preset() {
   constexpr double kMegapascal = 1e6;
   ClydeMaterial denim;
   denim.k = {4.79 * kMegapascal, 4.52 * kMegapascal, 9.03 * kMegapascal, 2.44 * kMegapascal};
@@ -19,6 +19,13 @@ ClydeMaterial denim_preset() {
                   {1.0},
                   {12.71, -12802.0, 17.91, 30.07, 24.68},
                   {2.95, -2823.9, 4.29}}};
+  return denim;
+}
+
+ClydeMaterial denim_preset() {
+  ClydeMaterial denim = denim_table1_preset();
+  // At small strain |k2 E11 E22| / 2√(AB) = k2/√(k1 k3) = 0.687 < onset: Table 1's tangent.
+  denim.coupling_limit = {true, 0.75, 0.9};
   return denim;
 }
 

@@ -2,8 +2,10 @@
 // (`clyde-orthotropic`, from a preset and/or explicit k, mu, alpha) or isotropic
 // St. Venant-Kirchhoff (`isotropic-svk`).
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
+#include "mlshell/material.hpp"
 #include "scene_sections.hpp"
 
 namespace mlshell::scene_reading {
@@ -34,12 +36,34 @@ std::optional<Field> find_or_require(const Field& material, std::string_view key
   return material.require(key, expected);
 }
 
+/// `coupling_limit: none` or `{onset: θ_o, bound: θ_b}` with 0 < θ_o < θ_b < 1.
+void read_coupling_limit(const Field& field, ClydeMaterial& clyde) {
+  constexpr std::string_view expected = "none, or {onset: a, bound: b} with 0 < a < b < 1";
+  if (field.is_scalar()) {
+    field.check(field.string() == "none", "unknown value", expected);
+    clyde.coupling_limit.enabled = false;
+    return;
+  }
+  field.check(field.is_map(), "must be none or a map", expected);
+  field.expect_keys({"onset", "bound"});
+  CouplingLimit limit;
+  limit.enabled = true;
+  const Field onset = field.require("onset", "a number in (0, 1)");
+  const Field bound = field.require("bound", "a number in (0, 1)");
+  limit.onset = onset.number();
+  limit.bound = bound.number();
+  bound.check(limit.bound > 0.0 && limit.bound < 1.0, "must lie in (0, 1)");
+  onset.check(limit.onset > 0.0 && limit.onset < limit.bound, "must lie in (0, bound)");
+  clyde.coupling_limit = limit;
+}
+
 ClydeMaterial read_clyde(const Field& material, std::string& preset) {
   ClydeMaterial clyde;
   if (const auto name = material.find("preset")) {
     preset = name->string();
-    name->check(preset == "denim", "unknown preset", "denim");
-    clyde = denim_preset();
+    name->check(preset == "denim" || preset == "denim-table1", "unknown preset",
+                "denim (Table 1 with the coupling limit) or denim-table1 (Table 1 as printed)");
+    clyde = preset == "denim" ? denim_preset() : denim_table1_preset();
   }
   const bool has_preset = !preset.empty();
 
@@ -61,6 +85,13 @@ ClydeMaterial read_clyde(const Field& material, std::string& preset) {
         "phi_" + std::to_string(j + 1) + " has " + std::to_string(clyde.mu[j].size()) + " mu and " +
         std::to_string(clyde.alpha[j].size()) + " alpha entries; they must have the same number");
   }
+  if (const auto limit = material.find("coupling_limit")) read_coupling_limit(*limit, clyde);
+  // The response functions must be continuable (phi_j'(0) > 0, a rising range).
+  try {
+    ClydeOrthotropicMaterial check(clyde);
+  } catch (const std::invalid_argument& e) {
+    (mu ? *mu : alpha ? *alpha : material).fail(e.what());
+  }
   return clyde;
 }
 
@@ -81,7 +112,7 @@ MaterialSpec read_material(const Field& material) {
   MaterialSpec spec;
   if (model_name == "clyde-orthotropic") {
     material.expect_keys({"model", "preset", "thickness", "density", "warp", "thickness_points",
-                          "k", "mu", "alpha"});
+                          "k", "mu", "alpha", "coupling_limit"});
     spec.model = read_clyde(material, spec.preset);
   } else if (model_name == "isotropic-svk") {
     material.expect_keys(
@@ -91,7 +122,7 @@ MaterialSpec read_material(const Field& material) {
     model.fail("unknown material model", "clyde-orthotropic or isotropic-svk");
   }
 
-  const bool denim = spec.preset == "denim";
+  const bool denim = spec.preset.rfind("denim", 0) == 0;
   const auto thickness = find_or_require(material, "thickness", "a number > 0, in m", denim);
   spec.thickness = thickness ? thickness->positive_number() : kDenimThickness;
   const auto density = find_or_require(material, "density", "a number >= 0, in kg/m²", denim);

@@ -22,7 +22,14 @@ geometry:                    required
   refine: int                uniform Catmull-Clark refinements of the cage, 0..8 (default 0)
 material:                    required
   model: clyde-orthotropic   woven cloth, eq. (3.3)-(3.4) of Kopanicakova et al. 2019
-    preset: denim            Table 1 of the paper; k, mu, alpha below override it
+    preset: denim            Table 1 of the paper with its coupling limited so that the energy is
+                             positive for every strain (the default of the examples)
+    preset: denim-table1     Table 1 exactly as printed; its energy has a negative well near
+                             E~ = (0.115, -0.11, 0) (psi = -0.0205 MPa) that free cloth falls into
+                             (both: k, mu, alpha below override the preset)
+    coupling_limit: none | {onset: a, bound: b}   0 < a < b < 1: k2 phi2(E11 E22) is kept while
+                             it is below a * 2 sqrt(AB) (A, B the warp and weft energies) and
+                             saturates towards b * 2 sqrt(AB); denim: {onset: 0.75, bound: 0.9}
     k: [k1, k2, k3, k4]      Pa, each > 0 (required without a preset)
     mu: [[...], x4]          mu_ji, four non-empty lists (required without a preset)
     alpha: [[...], x4]       alpha_ji, nonzero, same lengths as mu (required without a preset)

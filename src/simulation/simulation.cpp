@@ -310,6 +310,7 @@ PetscErrorCode Simulation::run(int* status) {
           comm_, "step %4d/%d  t = %-8.4g  E = % .6e  its = %4d  |g| = %.3e  %s  %.2f s\n", n,
           scene_.time.steps, n * scene_.time.dt, total, report.iterations, report.gradient_norm,
           report.reason.c_str(), wall));
+    PetscCall(report_material(n));
     if (output_->csv) {
       std::vector<std::variant<double, long long, std::string>> row{static_cast<long long>(n),
                                                                     n * scene_.time.dt};
@@ -336,12 +337,6 @@ PetscErrorCode Simulation::run(int* status) {
                       "stopping. Try a smaller dt, more iterations (-tao_max_it) or another "
                       "solver (-tao_type).\n",
                       n, report.reason.c_str(), report.gradient_norm, report.iterations));
-      if (problem_->inadmissible_evaluations() > 0)
-        PetscCall(PetscPrintf(comm_,
-                              "mlshell: %ld trial point(s) lay outside the material's valid domain "
-                              "(strains beyond the fitted range, see `mlshell --help`): the "
-                              "iterates are pressed against the edge of the material model.\n",
-                              problem_->inadmissible_evaluations()));
       break;
     }
   }
@@ -360,6 +355,32 @@ PetscErrorCode Simulation::run(int* status) {
           ? ", frame_*.obj"
           : ""));
   *status = all_converged_ ? 0 : kExitSolverFailed;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::report_material(int step) {
+  PetscFunctionBeginUser;
+  MaterialReport& r = material_final_;
+  PetscCall(problem_->material_report(u_, r));
+  if (r.points == 0) PetscFunctionReturn(0);
+  min_energy_density_ = std::min(min_energy_density_, r.min_energy_density);
+  const double pct = 100.0 / static_cast<double>(r.points);
+  if (r.beyond_fit > 0) {
+    ++steps_beyond_fit_;
+    PetscCall(PetscPrintf(comm_,
+                          "mlshell: step %d: %ld of %ld material points (%.2f %%) have strains "
+                          "beyond the fitted range of the material (its continuation, see "
+                          "`mlshell --help`)\n",
+                          step, r.beyond_fit, r.points, pct * r.beyond_fit));
+  }
+  if (r.negative > 0) {
+    ++steps_negative_;
+    PetscCall(PetscPrintf(comm_,
+                          "mlshell: step %d: the strain energy density is negative at %ld of %ld "
+                          "material points (%.2f %%), min psi = %.4g Pa: the material fit is not "
+                          "positive there (preset denim-table1's well; preset denim limits it)\n",
+                          step, r.negative, r.points, pct * r.negative, r.min_energy_density));
+  }
   PetscFunctionReturn(0);
 }
 

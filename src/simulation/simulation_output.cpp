@@ -132,7 +132,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"reason", Json(last ? last->reason : std::string("not run"))},
         {"objective_evaluations", Json(problem_->objective_evaluations())},
         {"hessian_evaluations", Json(problem_->hessian_evaluations())},
-        {"inadmissible_trial_points", Json(problem_->inadmissible_evaluations())}};
+        {"nonfinite_trial_points", Json(problem_->inadmissible_evaluations())}};
     if (!rmtr_totals_.levels.empty()) {
       // Work of RMTR summed over the steps (paper eq. 7.2-7.4); level 0 is the coarsest.
       Json::Array levels;
@@ -150,6 +150,20 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                                     {"assembly_work_units", Json(rmtr_totals_.assembly_work_units)},
                                     {"qp_work_units", Json(rmtr_totals_.qp_work_units)}}));
     }
+    // Where the material points lie in the material model: at the last solution, and over all
+    // steps (steps whose solution reached the continuation or a negative energy density).
+    const MaterialReport& m = material_final_;
+    const double min_psi = std::isfinite(min_energy_density_) ? min_energy_density_ : 0.0;
+    const Json material(Json::Object{
+        {"points", Json(m.points)},
+        {"beyond_fit", Json(m.beyond_fit)},
+        {"coupling_limited", Json(m.coupling_limited)},
+        {"negative_energy", Json(m.negative)},
+        {"min_energy_density", Json(std::isfinite(m.min_energy_density) ? m.min_energy_density
+                                                                         : 0.0)},
+        {"steps_beyond_fit", Json(steps_beyond_fit_)},
+        {"steps_with_negative_energy", Json(steps_negative_)},
+        {"min_energy_density_all_steps", Json(min_psi)}});
     Json::Object top{{"scene", Json(scene_.name)},
                      {"status", Json(status)},
                      {"dofs", Json(disc_->num_dofs())},
@@ -160,6 +174,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                      {"gradient_norm", Json(static_cast<double>(gnorm))},
                      {"probes", Json(probes)},
                      {"solver", Json(solver)},
+                     {"material", material},
                      {"wall_time", Json(MPI_Wtime() - wall_start_)}};
     if (spectrum_)
       top.emplace_back(
