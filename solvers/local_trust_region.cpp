@@ -28,22 +28,41 @@ PetscErrorCode TrustRegionParameters::validate(MPI_Comm comm, const char* who) c
   PetscFunctionReturn(0);
 }
 
-bool StoppingRule::stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal f_error,
-                             PetscReal dx, PetscReal xnorm) const {
+bool StoppingRule::stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx,
+                             PetscReal xnorm) const {
   if (!(delta > 1e15)) return false;
-  return std::abs(df) <= std::max(stagnation * std::abs(f), f_error) || dx <= stagnation * xnorm;
+  return std::abs(df) <= stagnation * std::abs(f) || dx <= stagnation * xnorm;
 }
 
 bool StoppingRule::collapsed(PetscReal delta, PetscReal xnorm) const {
   return delta < min_radius * std::max<PetscReal>(1.0, xnorm);
 }
 
-void StoppingRule::end_collapsed(Tao tao, PetscReal gnorm, PetscReal g0, bool* limiting) const {
+PetscReal StoppingRule::tolerance(Tao tao, PetscReal g0) const {
   PetscReal gatol, grtol, gttol;
   TaoGetTolerances(tao, &gatol, &grtol, &gttol);
-  const PetscReal tolerance = std::max(gatol, gttol * g0);
-  *limiting = gnorm <= limiting_factor * tolerance;
+  return std::max(gatol, gttol * g0);
+}
+
+void StoppingRule::end_collapsed(Tao tao, PetscReal gnorm, PetscReal g0, bool* limiting) const {
+  *limiting = gnorm <= limiting_factor * tolerance(tao, g0);
   tao->reason = *limiting ? TAO_CONVERGED_USER : TAO_DIVERGED_TR_REDUCTION;
+}
+
+bool StoppingRule::at_floor(Tao tao, PetscReal df, PetscReal f_error, PetscReal gnorm,
+                            PetscReal g0) {
+  const bool noise = std::abs(df) <= 10.0 * f_error && gnorm <= limiting_factor * tolerance(tao, g0);
+  if (!noise || (floor_count_ > 0 && gnorm < 0.5 * floor_gnorm_)) {
+    floor_count_ = 0;
+    if (!noise) return false;
+  }
+  if (floor_count_ == 0) floor_gnorm_ = gnorm;
+  return ++floor_count_ >= floor_iterations;
+}
+
+void StoppingRule::end_at_floor(Tao tao, bool* limiting) const {
+  *limiting = true;
+  tao->reason = TAO_CONVERGED_USER;
 }
 
 PetscErrorCode StoppingRule::options(PetscOptionItems* PetscOptionsObject,
@@ -59,6 +78,13 @@ PetscErrorCode StoppingRule::options(PetscOptionItems* PetscOptionsObject,
                              "a radius collapse with |g| below this times the gradient tolerance "
                              "is convergence at the limiting accuracy",
                              "", limiting_factor, &limiting_factor, nullptr));
+  PetscCall(PetscOptionsInt((prefix + "floor_iterations").c_str(),
+                            "iterations within the noise of f, near the tolerance, that end the "
+                            "solve at the limiting accuracy",
+                            "", floor_iterations, &floor_iterations, nullptr));
+  PetscCheck(floor_iterations >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
+             "%sfloor_iterations must be >= 1, got %" PetscInt_FMT, prefix.c_str(),
+             floor_iterations);
   PetscCheck(stagnation >= 0 && min_radius > 0 && limiting_factor >= 1, PETSC_COMM_WORLD,
              PETSC_ERR_ARG_OUTOFRANGE,
              "%sstagnation must be >= 0, %smin_radius > 0 and %slimiting_factor >= 1; got %g, %g "
@@ -183,7 +209,9 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
     PetscCall(f_.objective(trial_, &ft, nullptr));
     ++counters_.objectives;
     PetscReal actual = fx_ - ft;
-    if (std::isfinite(ft) && model_decrease < 1e3 * f_.evaluation_error()) {
+    const PetscReal f_error = f_.evaluation_error();
+    // Below the noise of f, trust the gradients, unless f rose by more than its own noise.
+    if (std::isfinite(ft) && model_decrease < 1e3 * f_error && actual > -10.0 * f_error) {
       PetscCall(f_.objective(trial_, &ft, g_trial_));
       PetscReal gs, gts;
       PetscCall(VecDot(g_, s_, &gs));

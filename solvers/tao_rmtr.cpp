@@ -332,6 +332,7 @@ PetscErrorCode solve(Tao tao) {
   PetscReal delta = c->delta0;
   const PetscReal g0 = top.tr->gradient_norm();
   c->limiting = false;
+  c->stopping.reset_floor();
   tao->reason = TAO_CONTINUE_ITERATING;
   if (!top.tr->finite()) {  // nothing to iterate on: say so instead of producing NaN
     tao->reason = TAO_DIVERGED_NAN;
@@ -379,10 +380,12 @@ PetscErrorCode solve(Tao tao) {
       PetscCall(VecAXPY(previous, -1.0, top.tr->solution()));
       PetscCall(VecNorm(previous, NORM_2, &dx));
       PetscCall(VecNorm(top.tr->solution(), NORM_2, &xnorm_new));
-      if (c->stopping.stagnated(delta, f_old - f, f, top.objective->evaluation_error(), dx,
-                                xnorm_new))
+      if (c->stopping.stagnated(delta, f_old - f, f, dx, xnorm_new))
         tao->reason = TAO_CONVERGED_STEPTOL;
     }
+    if (tao->reason == TAO_CONTINUE_ITERATING &&
+        c->stopping.at_floor(tao, f_old - f, top.objective->evaluation_error(), gnorm, g0))
+      c->stopping.end_at_floor(tao, &c->limiting);
   }
   PetscCall(VecDestroy(&previous));
   PetscCall(collect_statistics(*c));

@@ -76,6 +76,7 @@ PetscErrorCode solve(Tao tao) {
   PetscCall(tr.start(tao->solution));
   const PetscReal g0 = tr.gradient_norm();
   ctx->limiting = false;
+  ctx->stopping.reset_floor();
   tao->reason = TAO_CONTINUE_ITERATING;
   if (!tr.finite()) {  // nothing to iterate on: say so instead of producing NaN
     tao->reason = TAO_DIVERGED_NAN;
@@ -93,6 +94,7 @@ PetscErrorCode solve(Tao tao) {
       break;
     }
     TrustRegionIteration it;
+    const PetscReal f_before = tr.value();
     PetscCall(tr.iterate(ctx->params, &delta, &it));
     tao->ksp_its += it.qp.iterations;
     tao->ksp_tot_its += it.qp.iterations;
@@ -105,10 +107,13 @@ PetscErrorCode solve(Tao tao) {
     // Eq. (7.1), second part: Newton-like regime and no more progress in floating point.
     if (tao->reason == TAO_CONTINUE_ITERATING && it.accepted) {
       PetscCall(VecNorm(tr.solution(), NORM_2, &xnorm));
-      if (ctx->stopping.stagnated(delta, it.decrease, tr.value(),
-                                  tr.objective().evaluation_error(), it.step_norm, xnorm))
+      if (ctx->stopping.stagnated(delta, it.decrease, tr.value(), it.step_norm, xnorm))
         tao->reason = TAO_CONVERGED_STEPTOL;
     }
+    if (tao->reason == TAO_CONTINUE_ITERATING &&
+        ctx->stopping.at_floor(tao, f_before - tr.value(), tr.objective().evaluation_error(),
+                               tr.gradient_norm(), g0))
+      ctx->stopping.end_at_floor(tao, &ctx->limiting);
   }
   const TrustRegionCounters& c = tr.counters();
   ctx->stats = TrustRegionStatistics{c.accepted, c.qp_solves, c.objectives, c.hessians};

@@ -33,7 +33,8 @@ class LevelProblem final : public Objective {
   /// material's domain) is reported as +inf so that trust-region and line-search methods reject
   /// the step instead of propagating NaN.
   PetscErrorCode objective(Vec u, PetscReal* f, Vec g) override;
-  /// 8 ε Σ_pieces w |e| over every element, sample and node of the last objective().
+  /// 4 ε Σ_pieces w |e| over every element, sample and node of the last objective(), with w
+  /// the material's rounding factor for elastic pieces (1 otherwise).
   PetscReal evaluation_error() const override { return evaluation_error_; }
   /// ∇²f(u), assembled into H (created by create_matrix).
   PetscErrorCode hessian(Vec u, Mat H) override;

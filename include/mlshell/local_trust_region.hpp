@@ -14,7 +14,8 @@
 // each carrying an error of Objective::evaluation_error(); once the predicted reduction is below
 // 1000 times that error, the actual reduction is taken as −½ (∇f(x) + ∇f(x+s))ᵀ s instead (the
 // trapezoidal rule: exact for a quadratic, error O(‖s‖³), and its rounding is that of the
-// gradients, far smaller), so ρ stays meaningful down to the limiting accuracy.
+// gradients, far smaller), so ρ stays meaningful down to the limiting accuracy. A trial point
+// where f rose by more than 10 times its error is still rejected: wrong gradients cannot pass.
 #pragma once
 
 #include <functional>
@@ -41,22 +42,35 @@ struct TrustRegionParameters {
 /// How a trust-region solve (TR, or RMTR on its finest level) ends besides TAO's tolerances
 /// (paper eq. 7.1 and §7.2).
 ///   - Stagnation, the second part of (7.1): once Δ > 1e15 (Newton's regime), an accepted
-///     iteration with |Δf| ≤ s·|f| (or below the evaluation error of f) or ‖Δx‖ ≤ s·‖x‖. The
+///     iteration with |Δf| ≤ s·|f| or ‖Δx‖ ≤ s·‖x‖. The
 ///     paper's absolute 1e-12 is relative here, so that it holds for any units and size.
 ///   - Radius collapse, Δ < r·max(1, ‖x‖): no step lowers f in floating point. If ‖g‖ is within
 ///     `limiting_factor` of the gradient tolerance, the solve has reached the limiting accuracy
 ///     of f (its round-off floor) and converged; otherwise it failed (DIVERGED_TR_REDUCTION).
+///   - Meandering at the floor: `floor_iterations` iterations in a row whose decrease of f is
+///     within 10 times its evaluation error, with ‖g‖ within `limiting_factor` of the tolerance
+///     and not halving: the gradient itself is noise there (limiting accuracy).
 struct StoppingRule {
   PetscReal stagnation = 1e-12, min_radius = 1e-14, limiting_factor = 100.0;
-  bool stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal f_error, PetscReal dx,
-                 PetscReal xnorm) const;
+  PetscInt floor_iterations = 20;
+  /// Feeds one outer iteration (decrease df of f, its evaluation error, ‖g‖, ‖g₀‖); true when
+  /// the solve has meandered at the floor long enough (then call end_at_floor).
+  bool at_floor(Tao tao, PetscReal df, PetscReal f_error, PetscReal gnorm, PetscReal g0);
+  void end_at_floor(Tao tao, bool* limiting) const;
+  void reset_floor() { floor_count_ = 0; }
+  bool stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx, PetscReal xnorm) const;
   bool collapsed(PetscReal delta, PetscReal xnorm) const;
   /// Sets tao->reason after a collapse at gradient norm `gnorm` (‖g₀‖ = `g0` at the start):
   /// TAO_CONVERGED_USER (reported as CONVERGED_LIMITING_ACCURACY, *limiting = true) or
   /// TAO_DIVERGED_TR_REDUCTION.
   void end_collapsed(Tao tao, PetscReal gnorm, PetscReal g0, bool* limiting) const;
-  /// Reads `<prefix>stagnation`, `min_radius`, `limiting_factor` and checks them.
+  /// Reads `<prefix>stagnation`, `min_radius`, `limiting_factor`, `floor_iterations`.
   PetscErrorCode options(PetscOptionItems* PetscOptionsObject, const std::string& prefix);
+
+ private:
+  PetscReal tolerance(Tao tao, PetscReal g0) const;
+  PetscInt floor_count_ = 0;
+  PetscReal floor_gnorm_ = 0.0;  // ‖g‖ when the count started
 };
 
 /// Reads `<prefix>eta1`, `eta2`, `gamma1`, `gamma2` inside a PetscOptionsBegin/End block.

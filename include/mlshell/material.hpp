@@ -48,7 +48,7 @@ class Material {
   virtual MaterialPointStatus status(const Strain3& e) const { return {}; }
   /// Rounding errors in ψ, in units of ε ψ: more than 1 where ψ is a sum of large terms of
   /// both signs (the mu of Table 1 reach 4,618 for φ'(0) = 1). Used for the error estimate of f.
-  virtual double rounding_factor() const { return 8.0; }
+  virtual double rounding_factor() const { return 1.0; }
 };
 
 /// Orthotropic woven-cloth material of Clyde, Teran and Tamstorf (paper eq. 3.3):

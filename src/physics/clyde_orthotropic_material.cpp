@@ -90,14 +90,14 @@ double ClydeOrthotropicMaterial::energy_density(const Strain3& e, Eigen::Vector3
 }
 
 double ClydeOrthotropicMaterial::rounding_factor() const {
-  double factor = 8.0;
+  double factor = 1.0;
   for (int j = 0; j < 4; ++j) {
     double sum = 0.0, abs_sum = 0.0;
     for (double m : p_.mu[j]) {
       sum += m;
       abs_sum += std::abs(m);
     }
-    factor = std::max(factor, 8.0 * abs_sum / sum);
+    factor = std::max(factor, abs_sum / sum);
   }
   return factor;
 }

@@ -30,7 +30,7 @@ PetscErrorCode LevelProblem::objective(Vec u, PetscReal* f, Vec g) {
   double mine[2] = {local.value(), local.magnitude()}, sums[2] = {0.0, 0.0};
   PetscCallMPI(MPI_Allreduce(mine, sums, 2, MPI_DOUBLE, MPI_SUM, layout_.comm()));
   const double total = sums[0];
-  evaluation_error_ = 8.0 * PETSC_MACHINE_EPSILON * sums[1];
+  evaluation_error_ = 4.0 * PETSC_MACHINE_EPSILON * sums[1];
   *f = std::isfinite(total) ? total : PETSC_INFINITY;
   if (!std::isfinite(total)) ++inadmissible_evaluations_;
   if (g) {

@@ -1,0 +1,159 @@
+// The round-off floor (paper §7.2): a trust-region solve keeps a meaningful ρ below the noise
+// of f (trapezoidal actual reduction), stops as converged at the limiting accuracy when even
+// the gradient is noise, and still fails when the radius collapses far above the floor.
+#include <gtest/gtest.h>
+#include <petsctao.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "mlshell/trust_region.hpp"
+
+using namespace mlshell;
+
+namespace {
+
+/// Deterministic noise in [−1, 1] from the bits of x (the same x gives the same value, as with
+/// a real rounding error).
+double noise(const PetscScalar* x, PetscInt n, std::uint64_t salt) {
+  std::uint64_t h = 1469598103934665603ull ^ salt;
+  for (PetscInt i = 0; i < n; ++i) {
+    std::uint64_t b;
+    std::memcpy(&b, &x[i], sizeof b);
+    h = (h ^ b) * 1099511628211ull;
+    h ^= h >> 29;
+  }
+  return static_cast<double>(h % 2000001) / 1e6 - 1.0;
+}
+
+/// f(x) = ½ Σ d_i x_i² − Σ x_i on 50 unknowns (d from 1 to 1e4; the Hessian handed to the solver
+/// is off by up to 50 %), with noise of absolute size
+/// `f_noise` in f, `g_noise` in each gradient entry, and a constant `g_bias` added to ∇f (a
+/// wrong gradient).
+struct NoisyQuadratic final : Objective {
+  double f_noise = 0.0, g_noise = 0.0, g_bias = 0.0;
+  static constexpr PetscInt n = 50;
+  static double d(PetscInt i) { return std::pow(1e4, static_cast<double>(i) / (n - 1)); }
+  PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
+    const PetscScalar* a;
+    PetscFunctionBeginUser;
+    PetscCall(VecGetArrayRead(x, &a));
+    double v = 0.0;
+    for (PetscInt i = 0; i < n; ++i) v += 0.5 * d(i) * a[i] * a[i] - a[i];
+    *f = v + f_noise * noise(a, n, 1);
+    if (g) {
+      PetscScalar* ga;
+      PetscCall(VecGetArray(g, &ga));
+      for (PetscInt i = 0; i < n; ++i)
+        ga[i] = d(i) * a[i] - 1.0 + g_bias + g_noise * noise(a, n, 100 + i);
+      PetscCall(VecRestoreArray(g, &ga));
+    }
+    PetscCall(VecRestoreArrayRead(x, &a));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode hessian(Vec, Mat H) override {
+    PetscFunctionBeginUser;
+    // 50 % off on some entries, so that the solve converges linearly through the noise.
+    for (PetscInt i = 0; i < n; ++i)
+      PetscCall(MatSetValue(H, i, i, d(i) * (1.0 + 0.5 * std::sin(i)), INSERT_VALUES));
+    PetscCall(MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
+    PetscFunctionReturn(0);
+  }
+  PetscReal evaluation_error() const override { return f_noise; }
+};
+
+PetscErrorCode fg(Tao, Vec x, PetscReal* f, Vec g, void* c) {
+  return static_cast<NoisyQuadratic*>(c)->objective(x, f, g);
+}
+PetscErrorCode fonly(Tao, Vec x, PetscReal* f, void* c) {
+  return static_cast<NoisyQuadratic*>(c)->objective(x, f, nullptr);
+}
+PetscErrorCode hess(Tao, Vec x, Mat H, Mat, void* c) {
+  return static_cast<NoisyQuadratic*>(c)->hessian(x, H);
+}
+
+struct Outcome {
+  std::string reason;
+  bool converged = false;
+  double gnorm = 0.0;
+};
+
+/// Solves with mlshell's TAO type `type` ("tr" or "rmtr" on one level) from x = 0.
+Outcome solve(NoisyQuadratic& q, const char* type, double gatol) {
+  Tao tao;
+  Vec x;
+  Mat H;
+  Outcome out;
+  register_trust_region_tao_types();
+  VecCreateSeq(PETSC_COMM_SELF, NoisyQuadratic::n, &x);
+  MatCreateSeqAIJ(PETSC_COMM_SELF, NoisyQuadratic::n, NoisyQuadratic::n, 1, nullptr, &H);
+  MatSetOption(H, MAT_SYMMETRIC, PETSC_TRUE);
+  TaoCreate(PETSC_COMM_SELF, &tao);
+  TaoSetType(tao, type);
+  TaoSetObjectiveAndGradient(tao, nullptr, fg, &q);
+  TaoSetObjective(tao, fonly, &q);
+  TaoSetHessian(tao, H, H, hess, &q);
+  TaoSetFromOptions(tao);
+  TaoSetTolerances(tao, gatol, 0.0, 0.0);
+  TaoSetMaximumIterations(tao, 500);
+  trust_region_set_error_source(tao, &q);
+  VecSet(x, 0.0);
+  TaoSetSolution(tao, x);
+  TaoSolve(tao);
+  TaoConvergedReason reason;
+  TaoGetConvergedReason(tao, &reason);
+  out.converged = reason > 0;
+  out.reason = trust_region_converged_reason(tao);
+  PetscInt its;
+  PetscReal f, cnorm, xdiff;
+  TaoGetSolutionStatus(tao, &its, &f, &out.gnorm, &cnorm, &xdiff, &reason);
+  TaoDestroy(&tao);
+  MatDestroy(&H);
+  VecDestroy(&x);
+  return out;
+}
+
+}  // namespace
+
+TEST(LimitingAccuracy, GradientsKeepRhoMeaningfulBelowTheNoiseOfTheEnergy) {
+  // |f| ≈ 0.25; energy noise 1e-9 hides every reduction below |g|² / d_max ~ 1e-9, i.e.
+  // |g| ≲ 3e-3, but the gradients are exact: the solve must reach |g| < 1e-10 regardless.
+  for (const char* type : {"tr", "rmtr"}) {
+    NoisyQuadratic q;
+    q.f_noise = 1e-9;
+    const Outcome o = solve(q, type, 1e-10);
+    EXPECT_EQ(o.reason, "CONVERGED_GATOL") << type;
+    EXPECT_LT(o.gnorm, 1e-10) << type;
+  }
+}
+
+TEST(LimitingAccuracy, ARadiusCollapseAtTheFloorIsConvergence) {
+  // Gradient entries carry noise of 1e-12 (|g| floor ≈ 1e-11 over 50 entries), above the
+  // tolerance 1e-12 but within its factor 100: converged at the limiting accuracy.
+  for (const char* type : {"tr", "rmtr"}) {
+    NoisyQuadratic q;
+    q.f_noise = 1e-9;
+    q.g_noise = 1e-12;
+    const Outcome o = solve(q, type, 1e-12);
+    EXPECT_EQ(o.reason, "CONVERGED_LIMITING_ACCURACY") << type;
+    EXPECT_TRUE(o.converged) << type;
+    EXPECT_LT(o.gnorm, 1e-10) << type;
+  }
+}
+
+TEST(LimitingAccuracy, StallingFarAboveTheFloorStaysAFailure) {
+  // A gradient with a constant error of 1e-3 per entry and an energy accurate to 1e-15: no step
+  // along it lowers f once the true gradient is small; the solve fails (radius collapse or
+  // iteration limit) with |g| ≫ 100 × the tolerance, never at the limiting accuracy.
+  for (const char* type : {"tr", "rmtr"}) {
+    NoisyQuadratic q;
+    q.f_noise = 1e-15;
+    q.g_bias = 1e-3;
+    const Outcome o = solve(q, type, 1e-10);
+    EXPECT_EQ(o.reason.rfind("DIVERGED_", 0), 0u) << type << ": " << o.reason;
+    EXPECT_FALSE(o.converged) << type;
+    EXPECT_GT(o.gnorm, 1e-5) << type;
+  }
+}
