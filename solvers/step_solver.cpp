@@ -1,6 +1,7 @@
 // TAO as the step solver (see step_solver.hpp for the defaults).
 #include "mlshell/step_solver.hpp"
 
+#include <algorithm>
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
@@ -48,6 +49,18 @@ PetscErrorCode default_options(
     PetscCall(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &set));
     if (!set) PetscCall(PetscOptionsSetValue(nullptr, option.c_str(), value));
   }
+  PetscFunctionReturn(0);
+}
+
+/// -mlshell_force_rtol, listed by -help.
+PetscErrorCode force_rtol_option(MPI_Comm comm, PetscReal* value) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "mlshell step solver", "");
+  PetscCall(PetscOptionsReal("-mlshell_force_rtol",
+                             "gradient tolerance relative to the external forces: "
+                             "|g| < max(-tao_gatol, this * |f_ext|)",
+                             "", *value, value, nullptr));
+  PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
 
@@ -122,6 +135,12 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
     PetscCallAbort(comm, KSPSetFromOptions(ksp));
   }
   if (levels && type() == "rmtr") PetscCallAbort(comm, rmtr_set_levels(tao_, levels));
+  PetscReal grtol, gttol;
+  PetscCallAbort(comm, TaoGetTolerances(tao_, &gatol_, &grtol, &gttol));
+  PetscCallAbort(comm, force_rtol_option(comm, &force_rtol_));
+  if (!(force_rtol_ >= 0.0))
+    throw std::invalid_argument("-mlshell_force_rtol: must be >= 0; got '" +
+                                std::to_string(force_rtol_) + "'");
   PetscCallAbort(comm, trust_region_set_error_source(tao_, &problem_));
 }
 
@@ -165,6 +184,13 @@ PetscErrorCode StepSolver::solve_snes(Vec u, SolveReport& report) {
 PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   PetscFunctionBeginUser;
   if (snes_) PetscFunctionReturn(solve_snes(u, report));
+  // |g| < max(gatol, force_rtol |f_ext|): the absolute (7.1) and one relative to the forces.
+  PetscReal force, gatol, grtol, gttol;
+  PetscCall(problem_.external_force_norm(u, &force));
+  PetscCall(TaoGetTolerances(tao_, &gatol, &grtol, &gttol));
+  report.gradient_tolerance = std::max(gatol_, force_rtol_ * force);
+  report.force_scale = force;
+  PetscCall(TaoSetTolerances(tao_, report.gradient_tolerance, grtol, gttol));
   PetscCall(TaoSetSolution(tao_, u));
   PetscCall(TaoSolve(tao_));
   TaoConvergedReason reason;

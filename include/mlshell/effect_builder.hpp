@@ -22,7 +22,24 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Disc
                                                   const CageFrame& frame,
                                                   double penalty_mesh_size = 0.0);
 
-/// β = explicit penalty or h^-σ.
-double penalty_parameter(std::optional<double> penalty, double sigma, double mesh_size);
+/// The scales that make the default penalty dimensionally consistent: the membrane stiffness
+/// Y·τ of the material (N/m; Y = max(k1, k3) for the woven cloth, E/(1 − ν²) for St.
+/// Venant–Kirchhoff) and the size L of the reference surface (m; the largest side of its
+/// bounding box).
+struct PenaltyScale {
+  double membrane_stiffness = 0.0, length = 0.0;
+  static PenaltyScale of(const MaterialSpec& material, const Discretization& disc);
+};
+
+/// The membrane stiffness of the paper's denim in its stiffer (weft) direction, k3·τ =
+/// 9.03 MPa × 0.66 mm: the reference that gives its scenes β = h^-σ.
+constexpr double kPaperMembraneStiffness = 9.03e6 * 0.66e-3;
+
+/// β = the explicit penalty, or by default (paper eq. 3.6 made dimensionally consistent)
+///   β = (Yτ / Yτ_paper) · (1 m / L) · (h / L)^-σ   [N/m²],
+/// which is the paper's h^-σ for its 1 m denim (Yτ = Yτ_paper, L = 1 m) and keeps the ratio of
+/// the penalty to the membrane stiffness fixed when a problem is scaled in size or stiffness.
+double penalty_parameter(std::optional<double> penalty, double sigma, double mesh_size,
+                         const PenaltyScale& scale);
 
 }  // namespace mlshell

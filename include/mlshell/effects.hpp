@@ -104,6 +104,8 @@ class PenaltyTerm final : public EnergyTerm {
               std::function<Eigen::Vector3d(double)> motion);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
+  /// max over this rank's samples of |P(u(ξ) − d(t))| (m): how far the penalty lets go.
+  double max_violation(const std::vector<double>& u) const;
 
  private:
   std::vector<PenaltySample> samples_;

@@ -41,6 +41,12 @@ class LevelProblem final : public Objective {
   PetscErrorCode create_matrix(Mat* H) const { return layout_.create_matrix(H); }
   /// Global energy of each term at u, in the order of terms().
   PetscErrorCode term_energies(Vec u, std::vector<double>& energies);
+  /// ‖f_ext‖₂: the norm of the external forces (gravity and loads, at the current time), the
+  /// force scale of the problem's stopping tolerance. `like` gives the vector layout.
+  PetscErrorCode external_force_norm(Vec like, PetscReal* norm);
+  /// The largest violation |P(u − d(t))| (m) of each penalty term at u, in the order of terms()
+  /// (0 for terms that are not penalties), over all ranks.
+  PetscErrorCode constraint_violations(Vec u, std::vector<double>& violations);
   /// Where the material points of the elastic term lie in the material model at u (all ranks).
   PetscErrorCode material_report(Vec u, MaterialReport& report);
   /// Energy of each term, the total f(u) and ‖∇f(u)‖₂ at u (for reports).

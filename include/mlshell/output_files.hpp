@@ -24,6 +24,13 @@ class OutputError : public std::runtime_error {
 /// Writes `content` to `path` atomically (temporary file + rename). Creates parent folders.
 void write_file_atomic(const std::filesystem::path& path, const std::string& content);
 
+struct MaterialSpec;
+/// -mlshell_material_csv: ψ and its gradient (the stresses ∂ψ/∂Ẽ, Pa) along the uniaxial warp,
+/// weft and shear strains (|Ẽ| ≤ 0.4) and on the (Ẽ11, Ẽ22) plane (|Ẽ| ≤ 0.25), with where each
+/// point lies in the model (continuation, coupling limit). CSV columns: kind, e11, e22, e12,
+/// psi, s11, s22, s12, beyond_fit, coupling_limited.
+void write_material_table(const MaterialSpec& spec, const std::filesystem::path& path);
+
 /// A sampled surface: `points` holds 3 doubles per point, `quads` 4 point indices per quad
 /// (counter-clockwise), `displacement` 3 doubles per point (may be empty).
 struct SurfaceSample {

@@ -106,6 +106,11 @@ class Simulation {
   long steps_beyond_fit_ = 0, steps_negative_ = 0;
   double min_energy_density_ = INFINITY;  // over all steps' solutions
   PetscErrorCode report_material(int step);
+  /// Largest violation of each penalty term (index of terms()): last step and all steps.
+  std::vector<double> violation_last_, violation_max_;
+  PetscErrorCode report_constraints(int step);
+  /// A penalty condition violated by more than this fraction of h is reported after the step.
+  static constexpr double kConstraintWarning = 0.05;
   bool all_converged_ = true;
   int steps_done_ = 0;
   std::optional<SpectrumEstimate> spectrum_;

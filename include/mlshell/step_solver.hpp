@@ -4,6 +4,9 @@
 //
 // Defaults (all overridable from the command line or an options file, which win):
 //   -tao_type rmtr -tao_gatol 1e-7 (paper eq. 7.1) -tao_gttol 1e-10 -tao_grtol 0 -tao_max_it 1000
+//   -mlshell_force_rtol 1e-8: each step's gradient tolerance is max(gatol, 1e-8 ‖f_ext‖), with
+//   ‖f_ext‖ the norm of the external forces (gravity, loads), so that it holds for any units
+//   and size; the paper's scenes (‖f_ext‖ < 1) keep gatol.
 // i.e. the recursive multilevel trust region on every level it is given (one level: Local_TR).
 // For the KSP of whichever Newton-type PETSc solver is chosen instead (prefix tao_bnk_ for
 // bntr/bnls/bqnkls..., tao_nls_ for nls, ...): ksp_type stcg, pc_type lu,
@@ -31,6 +34,8 @@ struct SolveReport {
   int linear_iterations = 0;
   double energy = 0.0;
   double gradient_norm = 0.0;
+  double gradient_tolerance = 0.0;  ///< max(-tao_gatol, -mlshell_force_rtol × ‖f_ext‖)
+  double force_scale = 0.0;         ///< ‖f_ext‖₂
   RmtrStatistics rmtr;  ///< for -tao_type rmtr
 };
 
@@ -60,6 +65,7 @@ class StepSolver {
   SNES snes_ = nullptr;
   Vec residual_ = nullptr;
   Mat H_ = nullptr;
+  PetscReal gatol_ = 1e-7, force_rtol_ = 1e-8;  // absolute and force-relative tolerances
 };
 
 }  // namespace mlshell

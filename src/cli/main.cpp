@@ -31,6 +31,9 @@ const char* kUsage =
     "                              state; writes summary.json and exits\n"
     "  -mlshell_gauss_points N     Gauss points per direction per element (default 3, 2..6)\n"
     "  -mlshell_quiet              no per-step progress lines\n"
+    "  -mlshell_material_csv FILE  write the scene's material as tables (uniaxial curves, the\n"
+    "                              (E11, E22) plane) to FILE and exit; see\n"
+    "                              examples/material/plot_material.py\n"
     "  -mlshell_hierarchy_view     print the subdivision levels 0..refine: control points, dofs,\n"
     "                              extraordinary vertices, nonzeros/row and memory of S, R, Q\n"
     "  -mlshell_hierarchy_write DIR  each level's cage and limit surface as OBJ files in DIR\n"
@@ -124,6 +127,17 @@ int main(int argc, char** argv) {
       throw mlshell::SceneError("-mlshell_refine: must be in 0..8; got '" + std::to_string(refine) +
                                 "'");
     scene.geometry.refine = static_cast<int>(refine);
+    char table[PETSC_MAX_PATH_LEN];
+    PetscBool has_table = PETSC_FALSE;
+    PetscCallAbort(PETSC_COMM_WORLD,
+                   PetscOptionsGetString(nullptr, nullptr, "-mlshell_material_csv", table,
+                                         sizeof table, &has_table));
+    if (has_table) {  // the material alone: no mesh, no solve
+      if (rank == 0) mlshell::write_material_table(scene.material, table);
+      if (rank == 0) std::cout << "mlshell: material table in " << table << std::endl;
+      PetscFinalize();
+      return 0;
+    }
     mlshell::Simulation sim(PETSC_COMM_WORLD, std::move(scene),
                             mlshell::SimulationOptions::from_petsc_options());
     PetscCallAbort(PETSC_COMM_WORLD, sim.run(&status));

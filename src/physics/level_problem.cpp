@@ -76,6 +76,37 @@ PetscErrorCode LevelProblem::term_energies(Vec u, std::vector<double>& energies)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode LevelProblem::external_force_norm(Vec like, PetscReal* norm) {
+  PetscFunctionBeginUser;
+  const std::vector<double> zero(3 * static_cast<size_t>(layout_.num_local_points()), 0.0);
+  std::vector<double> force(zero.size(), 0.0);
+  CompensatedSum ignored;
+  for (const auto& t : terms_)
+    if (dynamic_cast<const LinearLoadTerm*>(t.get()))
+      PetscCall(t->add(zero, ignored, &force, nullptr));
+  Vec f;
+  PetscCall(VecDuplicate(like, &f));
+  PetscCall(VecZeroEntries(f));
+  PetscCall(layout_.add_to_global(force, f));
+  PetscCall(VecNorm(f, NORM_2, norm));
+  PetscCall(VecDestroy(&f));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::constraint_violations(Vec u, std::vector<double>& violations) {
+  PetscFunctionBeginUser;
+  PetscCall(layout_.to_local(u, u_local_));
+  std::vector<double> mine;
+  for (const auto& t : terms_) {
+    const auto* p = dynamic_cast<const PenaltyTerm*>(t.get());
+    mine.push_back(p ? p->max_violation(u_local_) : 0.0);
+  }
+  violations.assign(mine.size(), 0.0);
+  PetscCallMPI(MPI_Allreduce(mine.data(), violations.data(), static_cast<int>(mine.size()),
+                             MPI_DOUBLE, MPI_MAX, layout_.comm()));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LevelProblem::material_report(Vec u, MaterialReport& report) {
   PetscFunctionBeginUser;
   PetscCall(layout_.to_local(u, u_local_));

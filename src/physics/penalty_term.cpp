@@ -1,5 +1,6 @@
 // Penalty Dirichlet and clamp conditions (paper eq. 3.6): β/2 ‖P(u − d(t))‖² on curves and
 // points, plus β_r/2 ‖∂_ν u‖² (the slope across the boundary) for clamps.
+#include <algorithm>
 #include <cmath>
 
 #include "mlshell/effects.hpp"
@@ -13,6 +14,19 @@ PenaltyTerm::PenaltyTerm(std::string name, std::vector<PenaltySample> samples,
       samples_(std::move(samples)),
       components_(components),
       motion_(std::move(motion)) {}
+
+double PenaltyTerm::max_violation(const std::vector<double>& u) const {
+  const Eigen::Vector3d d = motion_(time_);
+  double worst = 0.0;
+  for (const PenaltySample& s : samples_) {
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < s.nodes.size(); ++i)
+      for (int c = 0; c < 3; ++c) r[c] += s.value[i] * u[3 * s.nodes[i] + c];
+    for (int c = 0; c < 3; ++c) r[c] = components_[c] ? r[c] - d[c] : 0.0;
+    worst = std::max(worst, r.norm());
+  }
+  return worst;
+}
 
 PetscErrorCode PenaltyTerm::add(const std::vector<double>& u, CompensatedSum& energy,
                                 std::vector<double>* grad, Mat hess) const {

@@ -3,14 +3,41 @@
 #include "mlshell/effect_builder.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 #include "mlshell/effects.hpp"
 
 namespace mlshell {
 
-double penalty_parameter(std::optional<double> penalty, double sigma, double mesh_size) {
-  return penalty ? *penalty : std::pow(mesh_size, -sigma);
+PenaltyScale PenaltyScale::of(const MaterialSpec& material, const Discretization& disc) {
+  PenaltyScale s;
+  double Y = 0.0;
+  if (const auto* c = std::get_if<ClydeMaterial>(&material.model))
+    Y = std::max(c->k[0], c->k[2]);
+  else if (const auto* v = std::get_if<SvkMaterial>(&material.model))
+    Y = v->youngs_modulus / (1.0 - v->poisson_ratio * v->poisson_ratio);
+  s.membrane_stiffness = Y * material.thickness;
+  // The reference limit surface at the corners of every element (ghost faces are not elements).
+  std::vector<SurfacePoint> corners;
+  for (int f : disc.elements())
+    for (double u : {0.0, 1.0})
+      for (double v : {0.0, 1.0}) corners.push_back({f, u, v});
+  Point3 lo = Point3::Constant(INFINITY), hi = Point3::Constant(-INFINITY);
+  for (const PointBasis& b : disc.evaluator().evaluate(corners)) {
+    const Point3 x = b.apply(kValue, disc.mesh().points);
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  s.length = (hi - lo).maxCoeff();
+  return s;
+}
+
+double penalty_parameter(std::optional<double> penalty, double sigma, double mesh_size,
+                         const PenaltyScale& scale) {
+  if (penalty) return *penalty;
+  const double L = scale.length;
+  return scale.membrane_stiffness / kPaperMembraneStiffness / L * std::pow(mesh_size / L, -sigma);
 }
 
 namespace {
@@ -130,6 +157,7 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Disc
   problem->add_term(std::make_unique<ShellElasticTerm>(disc, layout, scene.material));
   const double ramp_time = scene.time.dt * scene.time.steps;
   const double h = penalty_mesh_size > 0.0 ? penalty_mesh_size : disc.mesh_size();
+  const PenaltyScale scale = PenaltyScale::of(scene.material, disc);
   const int nlocal = layout.num_local_points();
   for (size_t index = 0; index < scene.effects.size(); ++index) {
     const Effect& effect = scene.effects[index];
@@ -168,11 +196,11 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Disc
         problem->add_term(
             std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
       } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
-        const double beta = penalty_parameter(d->penalty, d->sigma, h);
+        const double beta = penalty_parameter(d->penalty, d->sigma, h, scale);
         problem->add_term(penalty_term(name, disc, layout, d->where, frame, beta, 0.0, false,
                                        d->components, d->motion));
       } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
-        const double beta = penalty_parameter(c->penalty, c->sigma, h);
+        const double beta = penalty_parameter(c->penalty, c->sigma, h, scale);
         const double beta_rot = c->rotation_penalty ? *c->rotation_penalty : beta * h * h;
         problem->add_term(penalty_term(name, disc, layout, c->where, frame, beta, beta_rot, true,
                                        {true, true, true}, c->motion));

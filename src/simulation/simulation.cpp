@@ -311,6 +311,7 @@ PetscErrorCode Simulation::run(int* status) {
           scene_.time.steps, n * scene_.time.dt, total, report.iterations, report.gradient_norm,
           report.reason.c_str(), wall));
     PetscCall(report_material(n));
+    PetscCall(report_constraints(n));
     if (output_->csv) {
       std::vector<std::variant<double, long long, std::string>> row{static_cast<long long>(n),
                                                                     n * scene_.time.dt};
@@ -380,6 +381,25 @@ PetscErrorCode Simulation::report_material(int step) {
                           "material points (%.2f %%), min psi = %.4g Pa: the material fit is not "
                           "positive there (preset denim-table1's well; preset denim limits it)\n",
                           step, r.negative, r.points, pct * r.negative, r.min_energy_density));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::report_constraints(int step) {
+  PetscFunctionBeginUser;
+  PetscCall(problem_->constraint_violations(u_, violation_last_));
+  violation_max_.resize(violation_last_.size(), 0.0);
+  const double h = disc_->mesh_size();
+  const auto& terms = problem_->terms();
+  for (size_t i = 0; i < violation_last_.size(); ++i) {
+    violation_max_[i] = std::max(violation_max_[i], violation_last_[i]);
+    if (violation_last_[i] > kConstraintWarning * h)
+      PetscCall(PetscPrintf(comm_,
+                            "mlshell: step %d: %s (effects[%zu]) is violated by %.3g m, more than "
+                            "%g h = %.3g m: its penalty is too soft for this material and size "
+                            "(raise sigma or set penalty)\n",
+                            step, terms[i]->name().c_str(), i - 1, violation_last_[i],
+                            kConstraintWarning, kConstraintWarning * h));
   }
   PetscFunctionReturn(0);
 }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "mlshell/effects.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
 
@@ -130,6 +131,8 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"solve_time", Json(solve_time_)},
         {"converged", Json(all_converged_)},
         {"reason", Json(last ? last->reason : std::string("not run"))},
+        {"gradient_tolerance", Json(last ? last->gradient_tolerance : 0.0)},
+        {"force_scale", Json(last ? last->force_scale : 0.0)},
         {"objective_evaluations", Json(problem_->objective_evaluations())},
         {"hessian_evaluations", Json(problem_->hessian_evaluations())},
         {"nonfinite_trial_points", Json(problem_->inadmissible_evaluations())}};
@@ -164,6 +167,18 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"steps_beyond_fit", Json(steps_beyond_fit_)},
         {"steps_with_negative_energy", Json(steps_negative_)},
         {"min_energy_density_all_steps", Json(min_psi)}});
+    // The largest violation of every penalty condition, at the last step and over all steps.
+    Json::Array constraints;
+    for (size_t i = 0; i < violation_last_.size(); ++i) {
+      const auto* p = dynamic_cast<const PenaltyTerm*>(problem_->terms()[i].get());
+      if (!p) continue;
+      constraints.push_back(Json(Json::Object{
+          {"effect", Json(p->name())},
+          {"index", Json(static_cast<long long>(i) - 1)},
+          {"max_violation", Json(violation_last_[i])},
+          {"max_violation_all_steps", Json(violation_max_[i])},
+          {"warning_threshold", Json(kConstraintWarning * disc_->mesh_size())}}));
+    }
     Json::Object top{{"scene", Json(scene_.name)},
                      {"status", Json(status)},
                      {"dofs", Json(disc_->num_dofs())},
@@ -175,6 +190,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                      {"probes", Json(probes)},
                      {"solver", Json(solver)},
                      {"material", material},
+                     {"constraints", Json(constraints)},
                      {"wall_time", Json(MPI_Wtime() - wall_start_)}};
     if (spectrum_)
       top.emplace_back(
