@@ -51,7 +51,8 @@ void StoppingRule::end_collapsed(Tao tao, PetscReal gnorm, PetscReal g0, bool* l
 
 bool StoppingRule::at_floor(Tao tao, PetscReal df, PetscReal f_error, PetscReal gnorm,
                             PetscReal g0) {
-  const bool noise = std::abs(df) <= 10.0 * f_error && gnorm <= limiting_factor * tolerance(tao, g0);
+  const bool noise =
+      std::abs(df) <= 10.0 * f_error && gnorm <= limiting_factor * tolerance(tao, g0);
   if (!noise || (floor_count_ > 0 && gnorm < 0.5 * floor_gnorm_)) {
     floor_count_ = 0;
     if (!noise) return false;
@@ -89,8 +90,8 @@ PetscErrorCode StoppingRule::options(PetscOptionItems* PetscOptionsObject,
              PETSC_ERR_ARG_OUTOFRANGE,
              "%sstagnation must be >= 0, %smin_radius > 0 and %slimiting_factor >= 1; got %g, %g "
              "and %g",
-             prefix.c_str(), prefix.c_str(), prefix.c_str(), (double)stagnation,
-             (double)min_radius, (double)limiting_factor);
+             prefix.c_str(), prefix.c_str(), prefix.c_str(), (double)stagnation, (double)min_radius,
+             (double)limiting_factor);
   PetscFunctionReturn(0);
 }
 

@@ -5,6 +5,7 @@
 
 #include <petscmat.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,9 @@ class LevelProblem final : public Objective {
   long hessian_evaluations() const { return hessian_evaluations_; }
 
  private:
+  using PerTerm = std::function<double(const EnergyTerm&, const std::vector<double>&)>;
+  /// One number per term from this rank's local values, reduced over the ranks with `op`.
+  PetscErrorCode reduce_per_term(Vec u, const PerTerm& value, MPI_Op op, std::vector<double>& out);
   const ParallelLayout& layout_;
   std::vector<std::unique_ptr<EnergyTerm>> terms_;
   std::vector<double> u_local_, g_local_;

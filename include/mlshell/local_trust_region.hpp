@@ -18,11 +18,11 @@
 // where f rose by more than 10 times its error is still rejected: wrong gradients cannot pass.
 #pragma once
 
+#include <petsctao.h>
+
 #include <functional>
 #include <memory>
 #include <string>
-
-#include <petsctao.h>
 
 #include "mlshell/objective.hpp"
 #include "mlshell/trust_region_qp.hpp"

@@ -25,9 +25,9 @@ struct MaterialPointStatus {
 /// Counts over material points (every Gauss point in the plane and through the thickness).
 struct MaterialReport {
   long points = 0;
-  long beyond_fit = 0;        ///< points with an argument in a φ_j continuation
-  long coupling_limited = 0;  ///< points where the coupling limit acts
-  long negative = 0;          ///< points with ψ < 0
+  long beyond_fit = 0;                   ///< points with an argument in a φ_j continuation
+  long coupling_limited = 0;             ///< points where the coupling limit acts
+  long negative = 0;                     ///< points with ψ < 0
   double min_energy_density = INFINITY;  ///< min ψ (Pa)
   void add(const MaterialPointStatus& s, double psi) {
     ++points;
@@ -82,8 +82,8 @@ class ClydeOrthotropicMaterial final : public Material {
 
  private:
   /// The coupling factor s(ρ) with its gradient and Hessian in (Ẽ11, Ẽ22); false if s = 1.
-  bool coupling_factor(double e11, double e22, double& s, Eigen::Vector2d& ds,
-                       Eigen::Matrix2d& dds, bool derivatives) const;
+  bool coupling_factor(double e11, double e22, double& s, Eigen::Vector2d& ds, Eigen::Matrix2d& dds,
+                       bool derivatives) const;
   ClydeMaterial p_;
   std::vector<ResponseFunction> phi_;
 };

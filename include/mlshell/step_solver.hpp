@@ -36,7 +36,7 @@ struct SolveReport {
   double gradient_norm = 0.0;
   double gradient_tolerance = 0.0;  ///< max(-tao_gatol, -mlshell_force_rtol × ‖f_ext‖)
   double force_scale = 0.0;         ///< ‖f_ext‖₂
-  RmtrStatistics rmtr;  ///< for -tao_type rmtr
+  RmtrStatistics rmtr;              ///< for -tao_type rmtr
 };
 
 /// The solver a StepSolver will use: "snes" with -mlshell_step_solver snes, else the TAO type

@@ -19,12 +19,11 @@ bool ClydeOrthotropicMaterial::coupling_factor(double e11, double e22, double& s
   if (!lim.enabled) return false;
   const auto& k = p_.k;
   const double w = e11 * e22;
-  const PhiValue r1 = phi_[0].ratio(e11 * e11), r3 = phi_[2].ratio(e22 * e22),
-                 q = phi_[1].ratio(w);
+  const PhiValue r1 = phi_[0].ratio(e11 * e11), r3 = phi_[2].ratio(e22 * e22), q = phi_[1].ratio(w);
   if (q.f == 0.0) return false;
   // ln ρ = ln κ + ln|q(w)| − ½ ln r1(u1) − ½ ln r3(u3),  κ = k2 / (θ_b √(k1 k3)).
-  const double rho = k[1] / (lim.bound * std::sqrt(k[0] * k[2])) * std::abs(q.f) /
-                     std::sqrt(r1.f * r3.f);
+  const double rho =
+      k[1] / (lim.bound * std::sqrt(k[0] * k[2])) * std::abs(q.f) / std::sqrt(r1.f * r3.f);
   const double x0 = lim.onset / lim.bound;
   if (!(rho > x0)) return false;
   const double width = 1.0 - x0, th = std::tanh((rho - x0) / width), sech2 = 1.0 - th * th;

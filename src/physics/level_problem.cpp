@@ -61,19 +61,27 @@ PetscErrorCode LevelProblem::hessian(Vec u, Mat H) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode LevelProblem::term_energies(Vec u, std::vector<double>& energies) {
+PetscErrorCode LevelProblem::reduce_per_term(Vec u, const PerTerm& value, MPI_Op op,
+                                             std::vector<double>& out) {
   PetscFunctionBeginUser;
   PetscCall(layout_.to_local(u, u_local_));
   std::vector<double> mine;
-  for (const auto& t : terms_) {
-    CompensatedSum s;
-    PetscCall(t->add(u_local_, s, nullptr, nullptr));
-    mine.push_back(s.value());
-  }
-  energies.assign(mine.size(), 0.0);
-  PetscCallMPI(MPI_Allreduce(mine.data(), energies.data(), static_cast<int>(mine.size()),
-                             MPI_DOUBLE, MPI_SUM, layout_.comm()));
+  for (const auto& t : terms_) mine.push_back(value(*t, u_local_));
+  out.assign(mine.size(), 0.0);
+  PetscCallMPI(MPI_Allreduce(mine.data(), out.data(), static_cast<int>(mine.size()), MPI_DOUBLE, op,
+                             layout_.comm()));
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::term_energies(Vec u, std::vector<double>& energies) {
+  return reduce_per_term(
+      u,
+      [](const EnergyTerm& t, const std::vector<double>& ul) {
+        CompensatedSum s;
+        PetscCallAbort(PETSC_COMM_SELF, t.add(ul, s, nullptr, nullptr));
+        return s.value();
+      },
+      MPI_SUM, energies);
 }
 
 PetscErrorCode LevelProblem::external_force_norm(Vec like, PetscReal* norm) {
@@ -94,17 +102,13 @@ PetscErrorCode LevelProblem::external_force_norm(Vec like, PetscReal* norm) {
 }
 
 PetscErrorCode LevelProblem::constraint_violations(Vec u, std::vector<double>& violations) {
-  PetscFunctionBeginUser;
-  PetscCall(layout_.to_local(u, u_local_));
-  std::vector<double> mine;
-  for (const auto& t : terms_) {
-    const auto* p = dynamic_cast<const PenaltyTerm*>(t.get());
-    mine.push_back(p ? p->max_violation(u_local_) : 0.0);
-  }
-  violations.assign(mine.size(), 0.0);
-  PetscCallMPI(MPI_Allreduce(mine.data(), violations.data(), static_cast<int>(mine.size()),
-                             MPI_DOUBLE, MPI_MAX, layout_.comm()));
-  PetscFunctionReturn(0);
+  return reduce_per_term(
+      u,
+      [](const EnergyTerm& t, const std::vector<double>& ul) {
+        const auto* p = dynamic_cast<const PenaltyTerm*>(&t);
+        return p ? p->max_violation(ul) : 0.0;
+      },
+      MPI_MAX, violations);
 }
 
 PetscErrorCode LevelProblem::material_report(Vec u, MaterialReport& report) {

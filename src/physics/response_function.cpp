@@ -56,8 +56,8 @@ ResponseFunction::ResponseFunction(std::vector<double> mu, std::vector<double> a
   // The last maximum of φ' before the zero: φ'' changes sign from + to − there.
   const size_t m = std::max_element(slope.begin(), slope.end()) - slope.begin();
   if (m == 0)
-    throw std::invalid_argument(name + "' falls from u = 0 to zero at u = " +
-                                std::to_string(grid.back()) +
+    throw std::invalid_argument(name +
+                                "' falls from u = 0 to zero at u = " + std::to_string(grid.back()) +
                                 " without rising first: the fit has no range to continue from");
   double lo = grid[m - 1], hi = grid[m + 1];
   if (fitted(lo).ddf > 0.0 && fitted(hi).ddf < 0.0) {

@@ -157,27 +157,27 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
     // steps (steps whose solution reached the continuation or a negative energy density).
     const MaterialReport& m = material_final_;
     const double min_psi = std::isfinite(min_energy_density_) ? min_energy_density_ : 0.0;
-    const Json material(Json::Object{
-        {"points", Json(m.points)},
-        {"beyond_fit", Json(m.beyond_fit)},
-        {"coupling_limited", Json(m.coupling_limited)},
-        {"negative_energy", Json(m.negative)},
-        {"min_energy_density", Json(std::isfinite(m.min_energy_density) ? m.min_energy_density
-                                                                         : 0.0)},
-        {"steps_beyond_fit", Json(steps_beyond_fit_)},
-        {"steps_with_negative_energy", Json(steps_negative_)},
-        {"min_energy_density_all_steps", Json(min_psi)}});
+    const Json material(
+        Json::Object{{"points", Json(m.points)},
+                     {"beyond_fit", Json(m.beyond_fit)},
+                     {"coupling_limited", Json(m.coupling_limited)},
+                     {"negative_energy", Json(m.negative)},
+                     {"min_energy_density",
+                      Json(std::isfinite(m.min_energy_density) ? m.min_energy_density : 0.0)},
+                     {"steps_beyond_fit", Json(steps_beyond_fit_)},
+                     {"steps_with_negative_energy", Json(steps_negative_)},
+                     {"min_energy_density_all_steps", Json(min_psi)}});
     // The largest violation of every penalty condition, at the last step and over all steps.
     Json::Array constraints;
     for (size_t i = 0; i < violation_last_.size(); ++i) {
       const auto* p = dynamic_cast<const PenaltyTerm*>(problem_->terms()[i].get());
       if (!p) continue;
-      constraints.push_back(Json(Json::Object{
-          {"effect", Json(p->name())},
-          {"index", Json(static_cast<long long>(i) - 1)},
-          {"max_violation", Json(violation_last_[i])},
-          {"max_violation_all_steps", Json(violation_max_[i])},
-          {"warning_threshold", Json(kConstraintWarning * disc_->mesh_size())}}));
+      constraints.push_back(
+          Json(Json::Object{{"effect", Json(p->name())},
+                            {"index", Json(static_cast<long long>(i) - 1)},
+                            {"max_violation", Json(violation_last_[i])},
+                            {"max_violation_all_steps", Json(violation_max_[i])},
+                            {"warning_threshold", Json(kConstraintWarning * disc_->mesh_size())}}));
     }
     Json::Object top{{"scene", Json(scene_.name)},
                      {"status", Json(status)},

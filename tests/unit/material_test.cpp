@@ -2,12 +2,12 @@
 // differences in every regime (fitted, continued, coupling-limited), C² across the switches,
 // positivity of `denim` against the negative well of `denim-table1`, and Table 1's responses
 // against an independent long-double evaluation of the table.
+#include "mlshell/material.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
-
-#include "mlshell/material.hpp"
 
 using namespace mlshell;
 
@@ -53,7 +53,8 @@ void expect_derivatives(const Material& m, const Strain3& e, const char* where) 
     Eigen::Vector3d gp, gm;
     const double fd =
         (m.energy_density(ep, &gp, nullptr) - m.energy_density(em, &gm, nullptr)) / (2 * h);
-    EXPECT_NEAR(g[i], fd, 1e-6 * g.norm() + 1e-8 * H.norm() * h) << where << " e = " << e.transpose();
+    EXPECT_NEAR(g[i], fd, 1e-6 * g.norm() + 1e-8 * H.norm() * h)
+        << where << " e = " << e.transpose();
     const Eigen::Vector3d col = (gp - gm) / (2 * h);
     EXPECT_LT((H.col(i) - col).norm(), 1e-5 * H.norm()) << where << " e = " << e.transpose();
   }
@@ -73,11 +74,11 @@ TEST(Material, BothPresetsMatchFiniteDifferencesInEveryRegime) {
     }
     // The weft continuation (|Ẽ22| > 0.279), the strain-100 % caps, and mixed strains where
     // the coupling limit acts, including the lines Ẽ11 = 0 and Ẽ22 = 0 and tiny strains.
-    for (const Strain3& e : {Strain3(0.0, 0.35, 0.0), Strain3(0.01, -0.4, 0.02),
-                             Strain3(1.3, 0.0, 0.0), Strain3(0.0, 0.0, 1.2),
-                             Strain3(0.115, -0.11, 0.0), Strain3(-0.2, 0.15, 0.01),
-                             Strain3(1e-6, 0.1, 0.0), Strain3(0.1, 1e-7, 0.0),
-                             Strain3(2e-5, -3e-5, 1e-5), Strain3(0.0, 0.07, 0.0)})
+    for (const Strain3& e :
+         {Strain3(0.0, 0.35, 0.0), Strain3(0.01, -0.4, 0.02), Strain3(1.3, 0.0, 0.0),
+          Strain3(0.0, 0.0, 1.2), Strain3(0.115, -0.11, 0.0), Strain3(-0.2, 0.15, 0.01),
+          Strain3(1e-6, 0.1, 0.0), Strain3(0.1, 1e-7, 0.0), Strain3(2e-5, -3e-5, 1e-5),
+          Strain3(0.0, 0.07, 0.0)})
       expect_derivatives(m, e, "regime");
   }
 }

@@ -239,7 +239,8 @@ TEST(PenaltyParameter, IsThePapersForItsDenimAndScalesWithStiffnessAndSize) {
   // weight against the membrane stiffness, is unchanged.
   const double lambda = 37.0, kappa = 1e4, h = 0.0625;
   const PenaltyScale scaled{kappa * kPaperMembraneStiffness, lambda};
-  const double ratio = penalty_parameter(std::nullopt, 5.0, h, paper) * h / paper.membrane_stiffness;
+  const double ratio =
+      penalty_parameter(std::nullopt, 5.0, h, paper) * h / paper.membrane_stiffness;
   const double scaled_ratio = penalty_parameter(std::nullopt, 5.0, lambda * h, scaled) * lambda *
                               h / scaled.membrane_stiffness;
   EXPECT_NEAR(scaled_ratio, ratio, 1e-12 * ratio);

@@ -669,7 +669,8 @@ TEST(SceneErrors, InlineDefects) {
          t.material = "material: {model: clyde-orthotropic, preset: silk}\n";
        }),
        2,
-       {"material.preset: unknown preset; got 'silk'", "(expected denim (Table 1 with the coupling limit) or denim-table1"}},
+       {"material.preset: unknown preset; got 'silk'",
+        "(expected denim (Table 1 with the coupling limit) or denim-table1"}},
       {"zero_alpha",
        with([](SceneText& t) {
          t.material =
