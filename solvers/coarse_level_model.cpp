@@ -27,6 +27,12 @@ PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, Pet
   PetscFunctionReturn(0);
 }
 
+PetscReal CoarseLevelModel::evaluation_error() const {
+  PetscReal step = 0.0;  // work_ holds x − x₀ of the last objective()
+  PetscCallAbort(PetscObjectComm((PetscObject)work_), VecNorm(work_, NORM_2, &step));
+  return level_.evaluation_error() + 8.0 * PETSC_MACHINE_EPSILON * delta_g_norm_ * step;
+}
+
 PetscErrorCode CoarseLevelModel::objective(Vec x, PetscReal* h, Vec g) {
   PetscFunctionBeginUser;
   PetscCall(level_.objective(x, h, g));
@@ -34,9 +40,6 @@ PetscErrorCode CoarseLevelModel::objective(Vec x, PetscReal* h, Vec g) {
   PetscReal coupling;
   PetscCall(VecDot(delta_g_, work_, &coupling));
   *h += coupling;
-  PetscReal step;
-  PetscCall(VecNorm(work_, NORM_2, &step));
-  linear_error_ = 8.0 * PETSC_MACHINE_EPSILON * delta_g_norm_ * step;
   if (g) PetscCall(VecAXPY(g, 1.0, delta_g_));
   PetscFunctionReturn(0);
 }

@@ -21,12 +21,13 @@ class CoarseLevelModel final : public Objective {
   PetscErrorCode initialize(Vec x0, Vec restricted_gradient, PetscReal* f0 = nullptr);
   PetscErrorCode objective(Vec x, PetscReal* h, Vec g) override;
   PetscErrorCode hessian(Vec x, Mat H) override { return level_.hessian(x, H); }
-  PetscReal evaluation_error() const override { return level_.evaluation_error() + linear_error_; }
+  /// The level's error plus that of ⟨δg, x − x₀⟩ at the last point, 8 ε ‖δg‖ ‖x − x₀‖.
+  PetscReal evaluation_error() const override;
 
  private:
   Objective& level_;
   Vec x0_ = nullptr, delta_g_ = nullptr, work_ = nullptr;
-  PetscReal delta_g_norm_ = 0.0, linear_error_ = 0.0;  // rounding of ⟨δg, x − x₀⟩
+  PetscReal delta_g_norm_ = 0.0;
 };
 
 }  // namespace mlshell

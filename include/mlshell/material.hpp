@@ -81,9 +81,10 @@ class ClydeOrthotropicMaterial final : public Material {
   const ResponseFunction& phi(int j) const { return phi_[j]; }
 
  private:
-  /// The coupling factor s(ρ) with its gradient and Hessian in (Ẽ11, Ẽ22); false if s = 1.
-  bool coupling_factor(double e11, double e22, double& s, Eigen::Vector2d& ds, Eigen::Matrix2d& dds,
-                       bool derivatives) const;
+  /// The coupling factor s(ρ) with its gradient and Hessian in (Ẽ11, Ẽ22), given φ1(Ẽ11²),
+  /// φ2(Ẽ11 Ẽ22), φ3(Ẽ22²); false if s = 1.
+  bool coupling_factor(double e11, double e22, const PhiValue p[3], double& s, Eigen::Vector2d& ds,
+                       Eigen::Matrix2d& dds, bool derivatives) const;
   ClydeMaterial p_;
   std::vector<ResponseFunction> phi_;
 };

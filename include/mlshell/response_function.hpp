@@ -39,8 +39,8 @@ class ResponseFunction {
   PhiValue operator()(double u) const;
   /// The fit as printed, Σ μ_i/α_i ((u+1)^α_i − 1), for u > −1.
   PhiValue fitted(double u) const;
-  /// r(u) = φ̂(u)/u, r(0) = φ'(0).
-  PhiValue ratio(double u) const;
+  /// r(u) = φ̂(u)/u, r(0) = φ'(0); `at` is φ̂(u) when the caller has it already.
+  PhiValue ratio(double u, const PhiValue* at = nullptr) const;
   /// Whether u lies in the continuation (outside the fitted range [lower, upper]).
   bool continued(double u) const { return u > upper_.u || u < lower_.u; }
   double upper_limit() const { return upper_.u; }

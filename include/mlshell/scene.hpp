@@ -162,7 +162,8 @@ struct PointLoadEffect {
   bool ramp = false;
 };
 
-/// Penalty Dirichlet condition (paper eq. 3.6) with beta = h^-sigma unless `penalty` is given.
+/// Penalty Dirichlet condition (paper eq. 3.6) with the scaled beta of penalty_parameter
+/// (effect_builder.hpp; h^-sigma for the paper's denim) unless `penalty` is given.
 /// `dirichlet: {where, components: [x, y, z], motion: {...}, sigma: 5, penalty: 1e8}`
 struct DirichletEffect {
   Where where;

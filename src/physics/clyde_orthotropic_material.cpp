@@ -11,15 +11,16 @@ ClydeOrthotropicMaterial::ClydeOrthotropicMaterial(const ClydeMaterial& p) : p_(
   for (int j = 0; j < 4; ++j) phi_.emplace_back(p.mu[j], p.alpha[j], /*signed=*/j == 1, j + 1);
 }
 
-bool ClydeOrthotropicMaterial::coupling_factor(double e11, double e22, double& s,
-                                               Eigen::Vector2d& ds, Eigen::Matrix2d& dds,
+bool ClydeOrthotropicMaterial::coupling_factor(double e11, double e22, const PhiValue p[3],
+                                               double& s, Eigen::Vector2d& ds, Eigen::Matrix2d& dds,
                                                bool derivatives) const {
   const CouplingLimit& lim = p_.coupling_limit;
   s = 1.0;
   if (!lim.enabled) return false;
   const auto& k = p_.k;
   const double w = e11 * e22;
-  const PhiValue r1 = phi_[0].ratio(e11 * e11), r3 = phi_[2].ratio(e22 * e22), q = phi_[1].ratio(w);
+  const PhiValue r1 = phi_[0].ratio(e11 * e11, &p[0]), r3 = phi_[2].ratio(e22 * e22, &p[2]),
+                 q = phi_[1].ratio(w, &p[1]);
   if (q.f == 0.0) return false;
   // ln ρ = ln κ + ln|q(w)| − ½ ln r1(u1) − ½ ln r3(u3),  κ = k2 / (θ_b √(k1 k3)).
   const double rho =
@@ -65,7 +66,8 @@ double ClydeOrthotropicMaterial::energy_density(const Strain3& e, Eigen::Vector3
   double s;
   Eigen::Vector2d ds = Eigen::Vector2d::Zero();
   Eigen::Matrix2d dds = Eigen::Matrix2d::Zero();
-  const bool limited = coupling_factor(e11, e22, s, ds, dds, grad || hess);
+  const PhiValue p123[3] = {p1, p2, p3};
+  const bool limited = coupling_factor(e11, e22, p123, s, ds, dds, grad || hess);
   const double psi = 0.5 * k[0] * p1.f + 0.5 * k[2] * p3.f + k[3] * p4.f + C * s;
   if (grad) {
     Eigen::Vector2d g = s * dC;
@@ -108,7 +110,8 @@ MaterialPointStatus ClydeOrthotropicMaterial::status(const Strain3& e) const {
   double s;
   Eigen::Vector2d ds;
   Eigen::Matrix2d dds;
-  st.coupling_limited = coupling_factor(e[0], e[1], s, ds, dds, false);
+  const PhiValue p[3] = {phi_[0](e[0] * e[0]), phi_[1](e[0] * e[1]), phi_[2](e[1] * e[1])};
+  st.coupling_limited = coupling_factor(e[0], e[1], p, s, ds, dds, false);
   return st;
 }
 

@@ -114,7 +114,7 @@ PhiValue ResponseFunction::operator()(double u) const {
   return fitted(u);
 }
 
-PhiValue ResponseFunction::ratio(double u) const {
+PhiValue ResponseFunction::ratio(double u, const PhiValue* at) const {
   PhiValue r;
   if (std::abs(u) < taylor_limit_) {
     // φ/u = Σ_{n≥1} φ^(n)(0) u^{n−1}/n!
@@ -125,7 +125,7 @@ PhiValue ResponseFunction::ratio(double u) const {
     return r;
   }
   // r = φ/u, r' = (φ' − r)/u, r'' = (φ'' − 2r')/u.
-  const PhiValue p = (*this)(u);
+  const PhiValue p = at ? *at : (*this)(u);
   r.f = p.f / u;
   r.df = (p.df - r.f) / u;
   r.ddf = (p.ddf - 2.0 * r.df) / u;

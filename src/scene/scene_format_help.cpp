@@ -52,7 +52,9 @@ effects:                     optional list; only the listed effects are simulate
   - clamp: {where: CURVE, motion: MOTION, sigma: s, penalty: beta, rotation_penalty: b}
     ramp: false (default) or true: the load grows linearly from 0 to full over the steps.
     components: non-empty subset of x, y, z, no repeats (default all three).
-    sigma: > 0 (default 5): penalty beta = h^-sigma for mesh size h; penalty: explicit beta > 0.
+    sigma: > 0 (default 5): penalty beta = (Y tau / Y tau_denim) (1 m / L) (h / L)^-sigma for the
+        finest mesh size h, the membrane stiffness Y tau of the material and the size L of the
+        surface (the paper's h^-sigma for its 1 m denim); penalty: explicit beta > 0.
     rotation_penalty: > 0 (default beta * h^2).
     MOTION = {translate: [dx, dy, dz], over: [t0, t1]}: the prescribed displacement is 0 until
     t0, grows linearly to translate at t1 and stays there; t0 <= t1 (t0 == t1 is a jump).
