@@ -29,10 +29,10 @@ double noise(const PetscScalar* x, PetscInt n, std::uint64_t salt) {
 
 /// f(x) = ½ Σ d_i x_i² − Σ x_i on 50 unknowns (d from 1 to 1e4; the Hessian handed to the solver
 /// is off by up to 50 %), with noise of absolute size
-/// `f_noise` in f, `g_noise` in each gradient entry, and a constant `g_bias` added to ∇f (a
-/// wrong gradient).
+/// `f_noise` in f, `g_noise` in each gradient entry, a constant `g_bias` added to ∇f and a
+/// `g_sign` multiplying it (wrong gradients).
 struct NoisyQuadratic final : Objective {
-  double f_noise = 0.0, g_noise = 0.0, g_bias = 0.0;
+  double f_noise = 0.0, g_noise = 0.0, g_bias = 0.0, g_sign = 1.0;
   static constexpr PetscInt n = 50;
   static double d(PetscInt i) { return std::pow(1e4, static_cast<double>(i) / (n - 1)); }
   PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
@@ -46,7 +46,7 @@ struct NoisyQuadratic final : Objective {
       PetscScalar* ga;
       PetscCall(VecGetArray(g, &ga));
       for (PetscInt i = 0; i < n; ++i)
-        ga[i] = d(i) * a[i] - 1.0 + g_bias + g_noise * noise(a, n, 100 + i);
+        ga[i] = g_sign * (d(i) * a[i] - 1.0) + g_bias + g_noise * noise(a, n, 100 + i);
       PetscCall(VecRestoreArray(g, &ga));
     }
     PetscCall(VecRestoreArrayRead(x, &a));
@@ -155,5 +155,19 @@ TEST(LimitingAccuracy, StallingFarAboveTheFloorStaysAFailure) {
     EXPECT_EQ(o.reason.rfind("DIVERGED_", 0), 0u) << type << ": " << o.reason;
     EXPECT_FALSE(o.converged) << type;
     EXPECT_GT(o.gnorm, 1e-5) << type;
+  }
+}
+
+TEST(LimitingAccuracy, ARadiusCollapseFarAboveTheFloorStaysAFailure) {
+  // A gradient of the wrong sign: every step the model proposes raises f, so the radius
+  // collapses at x = 0 with |g| = 7.07, far above 100 × the tolerance: a failure, not the floor.
+  for (const char* type : {"tr", "rmtr"}) {
+    NoisyQuadratic q;
+    q.f_noise = 1e-15;
+    q.g_sign = -1.0;
+    const Outcome o = solve(q, type, 1e-8);
+    EXPECT_EQ(o.reason, "DIVERGED_TR_REDUCTION") << type;
+    EXPECT_FALSE(o.converged) << type;
+    EXPECT_NEAR(o.gnorm, std::sqrt(50.0), 1e-6) << type;
   }
 }
