@@ -130,8 +130,9 @@ class Report:
         if not table1:
             return
         body = []
-        for r in sorted(rows + table1, key=lambda r: (r["scene"], r["solver"],
-                                                       int(r["refine"]), r.get("preset", ""))):
+        ran = [r for r in rows + table1 if not r["reason"].startswith("not run")]
+        for r in sorted(ran, key=lambda r: (r["scene"], r["solver"], int(r["refine"]),
+                                            r.get("preset", ""))):
             body.append([r["scene"], r["solver"], r["levels"], count(r["dofs"]) if r["dofs"]
                          else "", r.get("preset", "denim"), outcome(r),
                          f"{number(r.get('energy_elastic')):.4g}"

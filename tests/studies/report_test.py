@@ -117,6 +117,21 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("stopped: tr_reduction", text)
         self.assertIn("| 1 of 2 cells | **not met** |", text)
 
+    def test_presets_side_by_side_with_their_elastic_energy(self):
+        write(self.out, "iterations", [
+            run_row("drooping", 363, 93, solver="rmtr", levels=2, refine=1, preset="denim",
+                    energy_elastic=0.0485),
+            run_row("drooping", 363, 172, solver="rmtr", levels=2, refine=1,
+                    preset="denim-table1", energy_elastic=-10.66),
+            {**run_row("drooping", "", "", 0, solver="rmtr", levels=3, refine=2,
+                       preset="denim-table1"), "reason": "not run (finer than studied)"}])
+        text = self.build()
+        self.assertIn("| drooping | 93 / 4,671 |", text)  # Table 4 shows the default preset
+        self.assertNotIn("172 / 4,671", text)
+        self.assertIn("| drooping | rmtr | 2 | 363 | denim-table1 | 172 | -10.66 |", text)
+        self.assertIn("| drooping | rmtr | 2 | 363 | denim | 93 | 0.0485 |", text)
+        self.assertNotIn("| 3 |  | denim-table1", text)  # rows not run are left out
+
     def test_peer_ratios_speedup_and_goals_at_51483(self):
         write(self.out, "peers", [
             run_row("trampoline", 51483, 5, solver="rmtr", wall_time=10.0, linear_iterations=5),
