@@ -166,6 +166,11 @@ PetscErrorCode LocalTrustRegion::accept(Vec s) {
   PetscFunctionBeginUser;
   PetscCall(VecAXPY(x_, 1.0, s));
   PetscCall(f_.objective(x_, &fx_, g_));
+  PetscFunctionReturn(accepted());
+}
+
+PetscErrorCode LocalTrustRegion::accepted() {
+  PetscFunctionBeginUser;
   ++counters_.accepted;
   PetscCall(assemble_derivatives());
   // The trial value was finite, so the same point evaluated with its gradient must be too.
@@ -224,7 +229,14 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
   }
   if (it->rho > p.eta1) {
     const PetscReal f_old = fx_;
-    PetscCall(accept(s_));
+    if (it->trapezoidal) {  // f and ∇f at x + s are known already
+      PetscCall(VecCopy(trial_, x_));
+      PetscCall(VecCopy(g_trial_, g_));
+      fx_ = ft;
+      PetscCall(accepted());
+    } else {
+      PetscCall(accept(s_));
+    }
     it->accepted = true;
     it->decrease = f_old - fx_;
   }

@@ -137,6 +137,8 @@ class LocalTrustRegion {
 
  private:
   PetscErrorCode assemble_derivatives();
+  /// Counts an accepted step at the new x_, f and ∇f, and assembles the Hessian there.
+  PetscErrorCode accepted();
   Objective& f_;
   Mat H_;
   std::unique_ptr<TrustRegionQp> qp_;
