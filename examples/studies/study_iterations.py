@@ -2,7 +2,7 @@
 levels (the finest level has refine = levels - 1), one step of dt = 1 from rest, on 2 ranks,
 for the default `denim` preset and (full mode) Table 1 as printed (`denim-table1`), with the
 elastic energy each solve ends with."""
-from runner import SCENES, SOURCE, solver_fields
+from runner import PRESETS, SCENES, preset_tag, scene_text, solver_fields
 from solvers import with_tolerance
 
 NAME = "iterations"
@@ -10,20 +10,9 @@ COLUMNS = ["scene", "preset", "solver", "levels", "refine", "dofs", "ranks", "it
            "converged", "reason", "gradient_norm", "energy_elastic", "wall_time", "solve_time"]
 
 
-def scene_text(scene, preset):
-    """The example scene with its denim preset replaced (None: the scene as it is)."""
-    if preset == "denim":
-        return None
-    text = (SOURCE / "examples" / f"{scene}.yaml").read_text()
-    edited = text.replace("preset: denim,", f"preset: {preset},")
-    if edited == text:
-        raise SystemExit(f"studies: error: examples/{scene}.yaml has no 'preset: denim,' to edit")
-    return edited
-
-
 def tr_solve(ctx, scene, refine, preset="denim"):
     """Single-level TR (Dogleg) on one step at dt = 1, tolerance (7.1)."""
-    tag = f"{scene}-tr-r{refine}" + ("" if preset == "denim" else f"-{preset}")
+    tag = f"{scene}-tr-r{refine}" + preset_tag(preset)
     return ctx.run(NAME, tag, scene, refine,
                    with_tolerance("tr", ctx.source, 1e-7, ctx.pick(300, 100000)),
                    scene_text=scene_text(scene, preset))
@@ -32,7 +21,7 @@ def tr_solve(ctx, scene, refine, preset="denim"):
 def rmtr_solve(ctx, scene, levels, refine=None, preset="denim"):
     """RMTR on `levels` levels, finest refine = levels - 1 unless given."""
     refine = levels - 1 if refine is None else refine
-    tag = f"{scene}-rmtr-l{levels}-r{refine}" + ("" if preset == "denim" else f"-{preset}")
+    tag = f"{scene}-rmtr-l{levels}-r{refine}" + preset_tag(preset)
     return ctx.run(NAME, tag, scene, refine,
                    with_tolerance("rmtr", ctx.source, 1e-7, ctx.pick(300, 20000))
                    + ["-tao_rmtr_levels", str(levels)], scene_text=scene_text(scene, preset))
@@ -46,7 +35,7 @@ def elastic(result):
 def run(ctx):
     rows = []
     for scene in ctx.scenes(SCENES, SCENES):
-        for preset in ctx.pick(("denim",), ("denim", "denim-table1")):
+        for preset in ctx.pick(PRESETS[:1], PRESETS):
             for refine in ctx.pick((0, 1), (0, 1, 2, 3, 4, 5)):
                 r = tr_solve(ctx, scene, refine, preset)
                 rows.append({**solver_fields(r), "solver": "tr", "levels": 1, "preset": preset,

@@ -154,6 +154,24 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("81 / 81", text)
         self.assertEqual(text.count("not measured in this run"), 2)
 
+    def test_projection_and_timestep_by_preset(self):
+        write(self.out, "projection", [
+            run_row("drooping", 3675, 700, projection="lsq", levels=4, preset="denim"),
+            run_row("drooping", 3675, 650, projection="reverse", levels=4, preset="denim"),
+            run_row("drooping", 3675, 900, projection="reverse", levels=4,
+                    preset="denim-table1")])
+        rows = []
+        for preset, largest in (("denim", 1.0), ("denim-table1", 0.5)):
+            for dt in (0.5, 1.0):
+                rows.append(run_row("drape", 1083, 10, int(dt <= largest), solver="tr", dt=dt,
+                                    preset=preset))
+        write(self.out, "timestep", rows)
+        text = self.build()
+        self.assertIn("| drooping | denim | 4 | 3,675 | 700 / 659 | 650 / 707 |", text)
+        self.assertIn("| drooping | denim-table1 | 4 | 3,675 | not run / 659 | 900 / 707 |", text)
+        self.assertIn("| drape (1,083 dofs) | drape, denim-table1 (1,083 dofs) |", text)
+        self.assertIn("| tr | 1 | 1/2 |", text)
+
     def test_accuracy_front_table(self):
         rows = []
         for solver, wall, err in (("rmtr", 1.0, 1e-3), ("rmtr", 2.0, 1e-5), ("tr", 3.0, 1e-4)):
