@@ -149,7 +149,9 @@ def solver_fields(result):
     """The columns every study shares, from one run's summary (empty when it has none)."""
     s = result["summary"]
     base = {"scene": result["scene"], "refine": result["refine"], "ranks": result["ranks"]}
-    if not s:
+    crashed = not result.get("skipped") and not result["timed_out"] and \
+        result["exit_code"] not in (0, 3)
+    if not s or crashed:  # a summary a crashed run left behind is not its result
         status = ("not run (finer than studied)" if result.get("skipped")
                   else f"timeout after {result['elapsed']:.0f} s" if result["timed_out"]
                   else f"exit {result['exit_code']}")

@@ -5,7 +5,7 @@
 # written for another refinement level must be refused with a message naming the file.
 #
 # Both runs are solved to a tight absolute gradient tolerance (-tao_gatol 1e-11, no relative
-# test), so that the comparison does not depend on solver state carried between steps (with the
+# test, no force-relative floor), so that the comparison does not depend on solver state carried between steps (with the
 # default stateless LU preconditioner the restart is bitwise identical anyway; a preconditioner
 # with history, such as -tao_bnk_pc_type lmvm, would otherwise agree only to about 1e-8).
 #
@@ -14,6 +14,7 @@ set -euo pipefail
 
 source "$(dirname "$0")/lib/common.bash" "$@"
 mkdir -p logs
+TIGHT=(-tao_gatol 1e-11 -tao_grtol 0 -mlshell_force_rtol 0)
 
 # scene FILE OUTDIR REFINE [INITIAL_STATE_LINE]
 scene() {
@@ -84,6 +85,8 @@ for name, s, steps in (("A", a, 4), ("B", b, 2)):
     check(s.get("solver", {}).get("converged") is True, f"run {name}: solver did not converge")
     check(s.get("steps") == steps, f"run {name}: steps {s.get('steps')}, expected {steps}")
     check(close(s.get("time", math.nan), 0.2, 1e-12), f"run {name}: time {s.get('time')}, expected 0.2")
+    tol = s.get("solver", {}).get("gradient_tolerance")
+    check(tol == 1e-11, f"run {name}: gradient tolerance {tol}, expected the tight 1e-11")
 
 da = a["probes"]["center"]["displacement"]
 db = b["probes"]["center"]["displacement"]

@@ -26,12 +26,25 @@ EXPECTED_ROWS = {
     "peers": 9,             # RMTR + 8 PETSc configurations
     "parallel": 2,          # 1 and 2 ranks
 }
+# Rows quick mode expects to time out or not to run, as (study, scene, reason prefix); none today.
+# Any other row whose run crashed, timed out or was skipped fails the test.
+EXPECTED_FAILED_RUNS = set()
+FAILED_RUN = ("exit ", "timeout", "not run")
 PLOTS = ("iterations.png", "condition.png", "timestep.png", "accuracy_trampoline.png",
          "peers.png", "parallel.png")
 
 
 def fail(message):
     sys.exit(f"quick_outputs: FAIL: {message}")
+
+
+def failed_runs(name, rows):
+    """The rows of study `name` whose run did not end with a result of mlshell's own (exit 0 or
+    3), less those EXPECTED_FAILED_RUNS allows."""
+    return [f"{r['scene']}: {r['reason']}" for r in rows
+            if "reason" in r and r["reason"].startswith(FAILED_RUN)
+            and not any(name == s and r["scene"] == c and r["reason"].startswith(p)
+                        for s, c, p in EXPECTED_FAILED_RUNS)]
 
 
 def check(out):
@@ -45,6 +58,9 @@ def check(out):
             fail(f"{path}: header is not {columns}")
         if len(rows) != count:
             fail(f"{path}: {len(rows)} rows, expected {count}")
+        failed = failed_runs(name, rows)
+        if failed:
+            fail(f"{path}: runs that crashed, timed out or did not run: {failed}")
     # The trampoline converges with TR and RMTR in quick mode (or, at worst, stops on the
     # round-off floor of the gradient just above 1e-7): its numbers must be real.
     for r in read_csv(out / "iterations.csv"):

@@ -13,8 +13,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples" / "studi
 import report  # noqa: E402
 import studies  # noqa: E402
 from plots import pareto_front  # noqa: E402
-from runner import parse_log_view  # noqa: E402
+from runner import parse_log_view, solver_fields  # noqa: E402
 from study_accuracy import l2_distance  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from quick_outputs import failed_runs  # noqa: E402
 
 
 def unit_square_elements(n, displacement):
@@ -185,6 +188,29 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| 2 | 1.000e-05 |", front)
         self.assertNotIn("| 3 | 1.000e-04 |", front)  # dominated by rmtr at 2 s
         self.assertTrue((self.out / "accuracy_trampoline.png").is_file())
+
+
+class FailedRuns(unittest.TestCase):
+    """A crash or a timeout must never pass for a solver's own outcome."""
+
+    def result(self, exit_code, timed_out=False, summary=True):
+        s = {"status": "complete", "dofs": 363, "gradient_norm": 1e-9, "wall_time": 1.0,
+             "solver": {"iterations": 4, "reason": "CONVERGED_GATOL", "converged": True}}
+        return {"scene": "trampoline", "refine": 1, "ranks": 2, "exit_code": exit_code,
+                "timed_out": timed_out, "elapsed": 9.0, "summary": s if summary else None}
+
+    def test_a_crash_after_the_summary_is_a_crash(self):
+        row = solver_fields(self.result(139))
+        self.assertEqual((row["reason"], row["converged"]), ("exit 139", 0))
+        self.assertEqual(failed_runs("iterations", [row]), ["trampoline: exit 139"])
+
+    def test_timeouts_and_solver_outcomes(self):
+        timeout = solver_fields(self.result(None, timed_out=True, summary=False))
+        self.assertTrue(timeout["reason"].startswith("timeout after 9 s"))
+        self.assertEqual(len(failed_runs("work", [timeout])), 1)
+        converged = solver_fields(self.result(0))
+        self.assertEqual(converged["reason"], "CONVERGED_GATOL")
+        self.assertEqual(failed_runs("work", [converged]), [])
 
 
 if __name__ == "__main__":
