@@ -76,6 +76,27 @@ echo "== command line"
 run_case missing-scene 2 "no_such_scene.yaml" "" no_such_scene.yaml
 run_case no-argument 1 "usage" ""
 run_case only-options 1 "usage" "" -mlshell_evaluate
+# Nonsense option values: exit 2 and a message naming the option (mlshell's own options), or
+# PETSc's error for a solver option (its exit code, its message naming the option); never a
+# summary.json.
+TRAMPOLINE="$SRC/examples/trampoline.yaml"
+run_case option-dt 2 "-mlshell_dt" "" "$TRAMPOLINE" -mlshell_dt -1
+run_case option-refine 2 "-mlshell_refine" "" "$TRAMPOLINE" -mlshell_refine 12
+run_case option-force-rtol 2 "-mlshell_force_rtol" "" "$TRAMPOLINE" -mlshell_force_rtol -1
+for option in "-tao_rmtr_eta1 0.9|eta1 = 0.9" "-tao_rmtr_projection foo|-tao_rmtr_projection" \
+              "-tao_rmtr_stagnation -1|-tao_rmtr_stagnation"; do
+  args=${option%|*} needle=${option#*|} dir="$WORK/cases/option${args%% *}"
+  mkdir -p "$dir"
+  echo "check: $args: a non-zero exit naming '$needle', no summary.json"
+  rc=0
+  # shellcheck disable=SC2086
+  (cd "$dir" && timeout 120 "$MLSHELL" "$TRAMPOLINE" -mlshell_output_dir out -mlshell_quiet $args \
+    >stdout.txt 2>stderr.txt) || rc=$?
+  [[ $rc -ne 0 ]] || fail "$args: exit status 0"
+  grep -qF -- "$needle" "$dir/stderr.txt" "$dir/stdout.txt" ||
+    fail "$args: the message does not name '$needle': $(head -c 400 "$dir/stderr.txt")"
+  [[ ! -e $dir/out/summary.json ]] || fail "$args: a summary.json was written"
+done
 
 # --- broken OBJ cages -----------------------------------------------------------------------------
 echo "== broken OBJ cages"

@@ -149,6 +149,24 @@ TEST(Material, BothPresetsKeepTable1sTangentAndUniaxialResponses) {
   }
 }
 
+TEST(Material, Table1PresetIsEquation33WithTheTableOnBiaxialAndShearedStrains) {
+  // ψ = k1/2 φ1(Ẽ11²) + k2 φ2(Ẽ11 Ẽ22) + k3/2 φ3(Ẽ22²) + k4 φ4(Ẽ12²) inside the fitted range,
+  // every term from the table typed above: a wrong k, μ or α of any row shows here.
+  const ClydeOrthotropicMaterial m = table1();
+  for (double a : {-0.2, -0.05, 0.03, 0.15})
+    for (double b : {-0.12, -0.02, 0.04, 0.09})
+      for (double c : {-0.3, 0.1}) {
+        const long double psi = 0.5L * kK[0] * table1_phi(0, (long double)a * a) +
+                                kK[1] * table1_phi(1, (long double)a * b) +
+                                0.5L * kK[2] * table1_phi(2, (long double)b * b) +
+                                kK[3] * table1_phi(3, (long double)c * c);
+        const double scale = 0.5 * 4.79e6 * a * a + 0.5 * 9.03e6 * b * b + 2.44e6 * c * c;
+        EXPECT_NEAR(m.energy_density(Strain3(a, b, c), nullptr, nullptr), (double)psi,
+                    1e-9 * scale)
+            << a << " " << b << " " << c;
+      }
+}
+
 TEST(Material, WeftIsContinuedFromItsPeakStiffnessAndStaysIncreasing) {
   const ClydeOrthotropicMaterial m = denim();
   const ResponseFunction& phi3 = m.phi(2);

@@ -1,6 +1,8 @@
 // Tests of the result-file writers (include/mlshell/output_files.hpp): atomic writes, OBJ,
 // XDMF+HDF5 (read back through PETSc's HDF5 viewer), CSV, JSON and binary checkpoints.
 #include "mlshell/output_files.hpp"
+#include "mlshell/scene.hpp"
+#include "mlshell/simulation.hpp"
 
 #include <gtest/gtest.h>
 #include <petscis.h>
@@ -319,6 +321,73 @@ TEST_F(OutputFiles, XdmfSeriesWritesFramesReadableBack) {
     EXPECT_EQ(bs, 4);  // stored as M×4
   }
   EXPECT_TRUE(temporaries_under(dir_).empty());
+}
+
+/// The vertex positions of an OBJ file, 3 per vertex.
+std::vector<double> obj_vertices(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<double> out;
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream ss(line.substr(2));
+      double x, y, z;
+      ss >> x >> y >> z;
+      out.insert(out.end(), {x, y, z});
+    }
+  return out;
+}
+
+TEST_F(OutputFiles, SimulationFramesHoldEachStepsState) {
+  // The clamped plate under a ramped load (half at step 1, all at step 2): every frame's HDF5
+  // geometry is the deformed surface of that step, the OBJ of the same frame has the same
+  // vertices, and geometry − displacement is the rest surface (frame 0, zero displacement).
+  mlshell::Scene scene = mlshell::parse_scene(fs::path(MLSHELL_SOURCE_DIR) / "examples/plate.yaml");
+  scene.geometry.refine = 1;
+  scene.time.steps = 2;
+  for (auto& e : scene.effects)
+    if (auto* load = std::get_if<mlshell::SurfaceLoadEffect>(&e)) load->ramp = true;
+  scene.output.dir = dir_ / "run";
+  scene.output.formats = {"xdmf", "obj"};
+  scene.output.samples_per_face = 2;
+  scene.output.checkpoint_every = 0;
+  mlshell::SimulationOptions options;
+  options.quiet = true;
+  int status = -1;
+  {
+    mlshell::Simulation sim(PETSC_COMM_SELF, scene, options);
+    ASSERT_EQ(sim.run(&status), 0);
+  }
+  ASSERT_EQ(status, 0);
+  std::vector<double> reference, previous;
+  for (int k = 0; k <= 2; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%s_%06d.h5", scene.name.c_str(), k);
+    PetscInt bs = 0;
+    const std::vector<double> geometry = load_vec(scene.output.dir / name, "geometry", &bs);
+    const std::vector<double> u = load_vec(scene.output.dir / name, "displacement", &bs);
+    std::snprintf(name, sizeof name, "frame_%06d.obj", k);
+    const std::vector<double> obj = obj_vertices(scene.output.dir / name);
+    ASSERT_EQ(obj.size(), geometry.size()) << "frame " << k;
+    ASSERT_EQ(u.size(), geometry.size()) << "frame " << k;
+    if (k == 0) reference = geometry;
+    double moved = 0.0, rest = 0.0, same = 0.0;
+    for (size_t i = 0; i < u.size(); ++i) {
+      moved = std::max(moved, std::abs(u[i]));
+      rest = std::max(rest, std::abs(geometry[i] - u[i] - reference[i]));
+      same = std::max(same, std::abs(geometry[i] - obj[i]));
+    }
+    EXPECT_LT(rest, 1e-12) << "frame " << k << ": geometry - displacement is not the rest surface";
+    EXPECT_LT(same, 1e-12) << "frame " << k << ": the OBJ and the HDF5 geometry differ";
+    if (k == 0) EXPECT_EQ(moved, 0.0) << "the initial frame is the rest state";
+    if (k > 0) {
+      EXPECT_GT(moved, 1e-8) << "frame " << k << " shows no displacement";
+      double change = 0.0;
+      for (size_t i = 0; i < u.size(); ++i) change = std::max(change, std::abs(u[i] - previous[i]));
+      EXPECT_GT(change, 1e-3 * moved) << "frame " << k << " repeats the previous frame";
+    }
+    previous = u;
+  }
 }
 
 TEST_F(OutputFiles, XdmfSeriesWithoutDisplacementAndRepeatedStep) {
