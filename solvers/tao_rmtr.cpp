@@ -255,6 +255,15 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       PetscCall(VecAXPY(lc.scratch, -1.0, lc.restricted));
       PetscCall(VecNorm(lc.scratch, NORM_2, &error));
       c.stats.max_consistency_error = std::max<double>(c.stats.max_consistency_error, error / rg);
+      PetscReal xnorm, misfit;
+      PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
+      if (xnorm > 0.0) {
+        PetscCall(MatMult(c.hierarchy->prolongation(c.offset + l - 1), lc.x0, lv.trial));
+        PetscCall(VecAXPY(lv.trial, -1.0, lv.tr->solution()));
+        PetscCall(VecNorm(lv.trial, NORM_2, &misfit));
+        c.stats.max_projection_misfit =
+            std::max<double>(c.stats.max_projection_misfit, misfit / xnorm);
+      }
     }
   }
   if (attempted) {
@@ -524,6 +533,7 @@ RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
   cycles += o.cycles;
   max_correction_ratio = std::max(max_correction_ratio, o.max_correction_ratio);
   max_consistency_error = std::max(max_consistency_error, o.max_consistency_error);
+  max_projection_misfit = std::max(max_projection_misfit, o.max_projection_misfit);
   assembly_work_units += o.assembly_work_units;
   qp_work_units += o.qp_work_units;
   return *this;

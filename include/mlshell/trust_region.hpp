@@ -42,6 +42,10 @@ struct RmtrStatistics {
   /// not exceed 1), and with -tao_rmtr_check_consistency max ‖∇h^{l−1}(x₀) − R∇h^l‖ / ‖R∇h^l‖
   /// at the start of every coarse solve (eq. 4.5, round-off).
   double max_correction_ratio = 0.0, max_consistency_error = 0.0;
+  /// With -tao_rmtr_check_consistency, also the largest relative misfit of the coarse starts,
+  /// ‖S x₀^{l−1} − x^l‖ / ‖x^l‖ (eq. 4.6): which projection ran shows here (least squares is the
+  /// smallest; a start that is not a projection of the fine iterate is of order 1).
+  double max_projection_misfit = 0.0;
   /// Sums the counts of another solve on the same levels (for totals over time steps).
   RmtrStatistics& operator+=(const RmtrStatistics& other);
 };

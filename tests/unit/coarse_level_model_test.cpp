@@ -63,6 +63,50 @@ TEST(CoarseLevelModel, FirstCoarseGradientIsTheRestrictedFineGradient) {
   for (Vec* v : {&u1, &g1, &x0, &rg, &g0}) VecDestroy(v);
 }
 
+TEST(CoarseLevelModel, IsTheCoarseObjectivePlusTheFirstOrderCoupling) {
+  // Eq. (4.3) against the coarse objective assembled on its own: at any x,
+  // h(x) − f₀(x) = ⟨R∇f − ∇f₀(x₀), x − x₀⟩ + const and ∇h(x) = ∇f₀(x) + R∇f − ∇f₀(x₀), with
+  // ∇f₀(x₀) assembled independently at the projected point (not taken from the model).
+  TwoLevels t;
+  Vec x0 = t.random(0, 1e-3, 6), rg = t.random(0, 1.0, 7), g00, x, gx, gh, expected;
+  VecDuplicate(x0, &g00);
+  VecDuplicate(x0, &gx);
+  VecDuplicate(x0, &gh);
+  VecDuplicate(x0, &expected);
+  PetscReal f00, h0;
+  t.problem.level(0).objective(x0, &f00, g00);
+  CoarseLevelModel model(t.problem.level(0));
+  model.initialize(x0, rg);
+  model.objective(x0, &h0, nullptr);
+  for (unsigned seed : {8u, 9u}) {
+    x = t.random(0, 1e-3, seed);
+    PetscReal fx, hx;
+    t.problem.level(0).objective(x, &fx, gx);
+    model.objective(x, &hx, gh);
+    // expected gradient ∇f₀(x) + R∇f − ∇f₀(x₀)
+    VecWAXPY(expected, -1.0, g00, rg);
+    VecAXPY(expected, 1.0, gx);
+    PetscReal err, ref, coupling;
+    VecAXPY(gh, -1.0, expected);
+    VecNorm(gh, NORM_INFINITY, &err);
+    VecNorm(expected, NORM_INFINITY, &ref);
+    EXPECT_LT(err, 1e-12 * ref) << "seed " << seed;
+    // value: (h(x) − h(x₀)) − (f₀(x) − f₀(x₀)) = ⟨R∇f − ∇f₀(x₀), x − x₀⟩
+    Vec dx, v;
+    VecDuplicate(x, &dx);
+    VecDuplicate(x, &v);
+    VecWAXPY(dx, -1.0, x0, x);
+    VecWAXPY(v, -1.0, g00, rg);
+    VecDot(v, dx, &coupling);
+    EXPECT_NEAR((hx - h0) - (fx - f00), coupling, 1e-9 * (std::abs(coupling) + std::abs(fx)))
+        << "seed " << seed;
+    VecDestroy(&dx);
+    VecDestroy(&v);
+    VecDestroy(&x);
+  }
+  for (Vec* v : {&x0, &rg, &g00, &gx, &gh, &expected}) VecDestroy(v);
+}
+
 TEST(CoarseLevelModel, GradientMatchesFiniteDifferences) {
   TwoLevels t;
   Vec x0 = t.random(0, 1e-3, 2), rg = t.random(0, 1.0, 3), x = t.random(0, 1e-3, 4),

@@ -161,8 +161,7 @@ TEST(Material, Table1PresetIsEquation33WithTheTableOnBiaxialAndShearedStrains) {
                                 0.5L * kK[2] * table1_phi(2, (long double)b * b) +
                                 kK[3] * table1_phi(3, (long double)c * c);
         const double scale = 0.5 * 4.79e6 * a * a + 0.5 * 9.03e6 * b * b + 2.44e6 * c * c;
-        EXPECT_NEAR(m.energy_density(Strain3(a, b, c), nullptr, nullptr), (double)psi,
-                    1e-9 * scale)
+        EXPECT_NEAR(m.energy_density(Strain3(a, b, c), nullptr, nullptr), (double)psi, 1e-9 * scale)
             << a << " " << b << " " << c;
       }
 }

@@ -1,8 +1,6 @@
 // Tests of the result-file writers (include/mlshell/output_files.hpp): atomic writes, OBJ,
 // XDMF+HDF5 (read back through PETSc's HDF5 viewer), CSV, JSON and binary checkpoints.
 #include "mlshell/output_files.hpp"
-#include "mlshell/scene.hpp"
-#include "mlshell/simulation.hpp"
 
 #include <gtest/gtest.h>
 #include <petscis.h>
@@ -20,6 +18,9 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "mlshell/scene.hpp"
+#include "mlshell/simulation.hpp"
 
 namespace fs = std::filesystem;
 using mlshell::OutputError;
