@@ -66,18 +66,19 @@ def largest_timestep(table, out):
     """Figure 10 as bars: the largest dt each solver converged at, per scene."""
     if not table:
         return None
-    scenes = sorted({s for s, _ in table})
-    solvers = sorted({v for _, v in table}, key=list(dict.fromkeys(v for _, v in table)).index)
-    fig, ax = plt.subplots(figsize=(9, 4))
+    scenes = list(dict.fromkeys(s for s, _ in table))  # the report's column order
+    solvers = list(dict.fromkeys(v for _, v in table))
+    fig, ax = plt.subplots(figsize=(max(9, 1.4 * len(scenes)), 4.6))
     width = 0.8 / max(1, len(solvers))
     for j, solver in enumerate(solvers):
         values = [table.get((s, solver)) or 0.0 for s in scenes]
         ax.bar([i + j * width for i in range(len(scenes))], values, width, label=solver)
     ax.set_yscale("log")
-    ax.set_ylim(1 / 48, 1.5)
-    ax.set_xticks([i + 0.4 - width / 2 for i in range(len(scenes))], scenes)
+    ax.set_ylim(1 / 48, 4.0)  # room for the legend above the bars
+    ax.set_xticks([i + 0.4 - width / 2 for i in range(len(scenes))],
+                  [s.replace(", ", "\n") for s in scenes], fontsize=8)
     ax.set(ylabel="largest dt that converges [s]", title="Fig. 10: robustness vs dt")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, ncol=len(solvers), loc="upper center")
     return _save(fig, out, "timestep.png")
 
 

@@ -1,0 +1,125 @@
+#!/usr/bin/python3
+"""Mutation check of the test suite (run by hand, not in CI): breaks the code in one place at a
+time, rebuilds, runs the suite and reports which tests failed. Every mutation must be caught.
+
+Each mutation replaces one exact piece of source text (which must occur once) and is reverted
+afterwards, whatever happens. The suite run is `ctest` less its three long end-to-end tests
+(studies.quick, cli.hard_cases, cli.paper_scenes), plus those a mutation names in `also`.
+
+usage: tests/mutation/mutations.py BUILD_DIR [NAME ...]   (default: every mutation)
+Writes BUILD_DIR/mutations.md (the table) and prints it."""
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+SOURCE = Path(__file__).resolve().parents[2]
+LONG = ("studies.quick", "cli.hard_cases", "cli.paper_scenes")
+
+# name, file, old text, new text, what it breaks, long tests to run as well
+MUTATIONS = [
+    ("rmtr-coarse-radius", "solvers/tao_rmtr.cpp",
+     "PetscReal coarse_delta = *delta;", "PetscReal coarse_delta = 1e-3 * *delta;",
+     "RMTR's coarse radius is 1e-3·Δ (a useless coarse level)", ()),
+    ("lsq-projection-nothing", "solvers/tao_rmtr.cpp",
+     "      PetscCall(c.hierarchy->least_squares_projection(h, fine, coarse));\n", "",
+     "-tao_rmtr_projection lsq computes nothing (stale coarse start)", ()),
+    ("inertia-rho-over-dt", "src/physics/inertia_term.cpp",
+     "coefficient_(area_density / (dt * dt))", "coefficient_(area_density / dt)",
+     "inertia coefficient ρ/dt instead of ρ/dt²", ()),
+    ("denim-alpha13", "src/scene/denim_preset.cpp",
+     "{{-7.80, 10.80, 18.95, -12.89, 1.61},", "{{-7.80, 10.80, 18.59, -12.89, 1.61},",
+     "a typo in Table 1's α₁₃", ()),
+    ("frames-reference-geometry", "mesh/surface_sampler.cpp",
+     "s.points.push_back(x[c] + d[c]);", "s.points.push_back(x[c]);",
+     "the writers output the reference geometry for every frame", ()),
+    ("line-load-weight", "src/simulation/effect_builder.cpp",
+     "s.weight * s.point.basis.w[kValue][i] * l->force_per_length[c];",
+     "s.point.basis.w[kValue][i] * l->force_per_length[c];",
+     "line loads lose their quadrature weight (wrong magnitude)", ()),
+    ("ramp-ignored", "src/physics/linear_load_term.cpp",
+     "return ramp_time_ > 0.0 ? std::clamp(time_ / ramp_time_, 0.0, 1.0) : 1.0;",
+     "return 1.0;", "ramped loads act in full from t = 0", ()),
+    ("never-accept", "solvers/local_trust_region.cpp",
+     "  if (it->rho > p.eta1) {", "  if (it->rho > 2 * p.eta1 + 1) {",
+     "Local_TR never accepts a step: every hard case fails", ("cli.hard_cases",)),
+    # Five of our own: physics, transfers, solver stopping.
+    ("bending-lever-arm", "src/physics/shell_kinematics.cpp",
+     "z_.push_back((rule.points[k] - 0.5) * thickness);",
+     "z_.push_back(0.8 * (rule.points[k] - 0.5) * thickness);",
+     "physics: through-thickness lever arm 0.8 z (bending stiffness × 0.64)", ()),
+    ("penalty-gradient-factor", "src/physics/penalty_term.cpp",
+     "ge[3 * i + c] = s.weight * r[c] * s.value[i] +",
+     "ge[3 * i + c] = 2 * s.weight * r[c] * s.value[i] +",
+     "physics: the penalty gradient is twice its energy's", ()),
+    ("reverse-subdivision-weight", "mesh/reverse_subdivision.cpp",
+     "c2 = -4.0 / (t * (t - 3.0))", "c2 = -3.0 / (t * (t - 3.0))",
+     "transfers: a wrong weight of eq. (5.19) at extraordinary vertices", ()),
+    ("limiting-factor", "include/mlshell/local_trust_region.hpp",
+     "limiting_factor = 100.0;", "limiting_factor = 1e8;",
+     "stopping: a stall far above the floor is reported as converged", ()),
+    ("damped-newton-alpha", "solvers/tao_newton_baselines.cpp",
+     "PetscReal alpha = 0.3;", "PetscReal alpha = 0.5;",
+     "baselines: damped Newton with α = 0.5 instead of 0.3", ()),
+]
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, cwd=kw.pop("cwd", SOURCE), stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, **kw)
+
+
+def failed_tests(build):
+    log = build / "Testing" / "Temporary" / "LastTestsFailed.log"
+    if not log.is_file():
+        return []
+    return [line.split(":", 1)[1].strip() for line in log.read_text().splitlines() if ":" in line]
+
+
+def check(build, name, path, old, new, what, also):
+    file = SOURCE / path
+    text = file.read_text()
+    if text.count(old) != 1:
+        return what, f"NOT APPLIED: the text occurs {text.count(old)} times in {path}", 0.0
+    start = time.monotonic()
+    try:
+        file.write_text(text.replace(old, new))
+        b = run(["cmake", "--build", str(build), "-j2"])
+        if b.returncode != 0:
+            return what, "build failed (caught by the compiler)", time.monotonic() - start
+        (build / "Testing" / "Temporary" / "LastTestsFailed.log").unlink(missing_ok=True)
+        exclude = "|".join(re.escape(t) for t in LONG if t not in also)
+        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                   OPENBLAS_NUM_THREADS="1")
+        run(["ctest", "-j2", "-E", f"^({exclude})$"], cwd=build, env=env)
+        failed = failed_tests(build)
+        caught = ", ".join(failed) if failed else "**NOT CAUGHT**"
+        return what, caught, time.monotonic() - start
+    finally:
+        file.write_text(text)
+
+
+def main(argv):
+    if len(argv) < 2:
+        sys.exit(__doc__.strip().splitlines()[-2])
+    build = Path(argv[1]).resolve()
+    chosen = [m for m in MUTATIONS if len(argv) == 2 or m[0] in argv[2:]]
+    rows = ["| mutation | what it breaks | tests that failed | s |", "|---|---|---|---|"]
+    missed = 0
+    for name, path, old, new, what, also in chosen:
+        print(f"mutation {name}: {what} ...", flush=True)
+        what, caught, seconds = check(build, name, path, old, new, what, also)
+        missed += caught.startswith(("**NOT", "NOT"))
+        rows.append(f"| {name} | {what} | {caught} | {seconds:.0f} |")
+        print(f"  -> {caught}", flush=True)
+    run(["cmake", "--build", str(build), "-j2"])  # the unmutated build again
+    table = "\n".join(rows) + "\n"
+    (build / "mutations.md").write_text(table)
+    print(table)
+    sys.exit(1 if missed else 0)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
