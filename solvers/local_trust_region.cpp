@@ -17,14 +17,14 @@ PetscReal TrustRegionParameters::updated_radius(PetscReal rho, PetscReal delta,
   return delta;
 }
 
-PetscErrorCode TrustRegionParameters::validate(MPI_Comm comm, const char* who) const {
+PetscErrorCode TrustRegionParameters::validate(MPI_Comm comm, const char* prefix) const {
   PetscFunctionBeginUser;
   PetscCheck(eta1 > 0 && eta1 < eta2 && eta2 < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "%s: need 0 < eta1 < eta2 < 1, got eta1 = %g and eta2 = %g", who, (double)eta1,
+             "%seta1 = %g and %seta2 = %g: need 0 < eta1 < eta2 < 1", prefix, (double)eta1, prefix,
              (double)eta2);
   PetscCheck(gamma1 > 0 && gamma1 < 1 && gamma2 > 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "%s: need 0 < gamma1 < 1 < gamma2, got gamma1 = %g and gamma2 = %g", who,
-             (double)gamma1, (double)gamma2);
+             "%sgamma1 = %g and %sgamma2 = %g: need 0 < gamma1 < 1 < gamma2", prefix,
+             (double)gamma1, prefix, (double)gamma2);
   PetscFunctionReturn(0);
 }
 

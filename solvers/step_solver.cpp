@@ -84,6 +84,18 @@ std::string step_solver_type() {
   return type;
 }
 
+namespace {
+
+/// Reading options checks their values identically on every rank, so a refused value is invalid
+/// input: thrown (the program reports PETSc's message and exits 2), not an MPI abort.
+void options_read(PetscErrorCode error, const char* what) {
+  if (error)
+    throw std::invalid_argument(std::string(what) + " refused an option value (PETSc error " +
+                                std::to_string(error) + ")");
+}
+
+}  // namespace
+
 StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : problem_(problem) {
   MPI_Comm comm = problem.layout().comm();
   PetscCallAbort(comm, problem.create_matrix(&H_));
@@ -101,7 +113,7 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
     PetscCallAbort(comm, MatCreateVecs(H_, &residual_, nullptr));
     PetscCallAbort(comm, SNESSetFunction(snes_, residual_, gradient_residual, &problem_));
     PetscCallAbort(comm, SNESSetJacobian(snes_, H_, H_, hessian_jacobian, &problem_));
-    PetscCallAbort(comm, SNESSetFromOptions(snes_));
+    options_read(SNESSetFromOptions(snes_), "SNESSetFromOptions");
     return;
   }
   // RMTR's own default smoother is the paper's ten STCG iterations; on cloth they stall on
@@ -120,7 +132,7 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
                  TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &problem_));
   PetscCallAbort(comm, TaoSetObjective(tao_, objective_only, &problem_));
   PetscCallAbort(comm, TaoSetHessian(tao_, H_, H_, hessian, &problem_));
-  PetscCallAbort(comm, TaoSetFromOptions(tao_));
+  options_read(TaoSetFromOptions(tao_), "TaoSetFromOptions");
   // Newton-type TAO solvers own a KSP whose prefix depends on the type (tao_bnk_, tao_nls_, ...):
   // default it to Steihaug–Toint CG with a direct factorisation unless the user chose otherwise.
   KSP ksp = nullptr;
@@ -132,9 +144,9 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
                                          {{"ksp_type", "stcg"},
                                           {"pc_type", "lu"},
                                           {"pc_factor_mat_solver_type", "mumps"}}));
-    PetscCallAbort(comm, KSPSetFromOptions(ksp));
+    options_read(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   }
-  if (levels && type() == "rmtr") PetscCallAbort(comm, rmtr_set_levels(tao_, levels));
+  if (levels && type() == "rmtr") options_read(rmtr_set_levels(tao_, levels), "rmtr_set_levels");
   PetscReal grtol, gttol;
   PetscCallAbort(comm, TaoGetTolerances(tao_, &gatol_, &grtol, &gttol));
   PetscCallAbort(comm, force_rtol_option(comm, &force_rtol_));

@@ -435,7 +435,7 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                              c->check_consistency, &c->check_consistency, nullptr));
   PetscOptionsHeadEnd();
   MPI_Comm comm = PetscObjectComm((PetscObject)tao);
-  PetscCall(c->params.validate(comm, "-tao_type rmtr"));
+  PetscCall(c->params.validate(comm, "-tao_rmtr_"));
   PetscCheck(c->requested_levels >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_levels: must be >= 1 (or 0 for all levels), got %" PetscInt_FMT,
              c->requested_levels);

@@ -134,7 +134,7 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(trust_region_parameter_options(PetscOptionsObject, "-tao_tr_", &ctx->params));
   PetscCall(ctx->stopping.options(PetscOptionsObject, "-tao_tr_"));
   PetscOptionsHeadEnd();
-  PetscCall(ctx->params.validate(PetscObjectComm((PetscObject)tao), "-tao_type tr"));
+  PetscCall(ctx->params.validate(PetscObjectComm((PetscObject)tao), "-tao_tr_"));
   PetscCheck(ctx->delta0 > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_tr_delta0: must be positive, got %g", (double)ctx->delta0);
   PetscFunctionReturn(0);

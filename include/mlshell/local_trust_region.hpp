@@ -36,7 +36,8 @@ struct TrustRegionParameters {
   /// expand to γ₂Δ (at most 1e30) when ρ > η₂, else keep Δ (the standard half of Alg. 4.3).
   PetscReal updated_radius(PetscReal rho, PetscReal delta, PetscReal step_norm) const;
   /// Raises PETSC_ERR_ARG_OUTOFRANGE unless 0 < η₁ < η₂ < 1 and 0 < γ₁ < 1 < γ₂.
-  PetscErrorCode validate(MPI_Comm comm, const char* who) const;
+  /// Refuses out-of-range values, naming the options (`prefix`: "-tao_rmtr_", "-tao_tr_").
+  PetscErrorCode validate(MPI_Comm comm, const char* prefix) const;
 };
 
 /// How a trust-region solve (TR, or RMTR on its finest level) ends besides TAO's tolerances

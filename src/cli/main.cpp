@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <regex>
 #include <string>
 
 #include "mlshell/output_files.hpp"
@@ -80,6 +81,31 @@ const char* scene_argument(int argc, char** argv) {
   return nullptr;
 }
 
+/// Turns PETSc errors raised by a solver option's value into invalid input (exit 2, one line):
+/// an argument-class error whose message names an option, e.g. "-tao_rmtr_eta1" or
+/// "-tao_rmtr_projection". Option values are checked identically on every rank, so every rank
+/// raises it and the run ends like bad scene input. Any other error keeps PETSc's traceback.
+struct OptionErrors {
+  std::string message;
+  static bool from_an_option(PetscErrorCode n, const char* mess) {
+    static const std::regex option(R"((^|[^A-Za-z0-9_])-[a-z]+_[a-z0-9_]+)");
+    const bool argument = n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE ||
+                          n == PETSC_ERR_ARG_INCOMP || n == PETSC_ERR_ARG_UNKNOWN_TYPE ||
+                          n == PETSC_ERR_USER || n == PETSC_ERR_USER_INPUT;
+    return argument && mess && std::regex_search(mess, option);
+  }
+  static PetscErrorCode handler(MPI_Comm comm, int line, const char* fun, const char* file,
+                                PetscErrorCode n, PetscErrorType p, const char* mess, void* ctx) {
+    auto* self = static_cast<OptionErrors*>(ctx);
+    if (p == PETSC_ERROR_INITIAL && self->message.empty() && from_an_option(n, mess)) {
+      self->message = mess;
+      return n;
+    }
+    if (!self->message.empty()) return n;  // that error on its way up
+    return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, nullptr);
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -94,6 +120,7 @@ int main(int argc, char** argv) {
   }
   if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) return 1;
   int rank = 0, size = 1, status = 0;
+  OptionErrors option_errors;  // PETSc's message for a refused solver option value
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   try {
@@ -144,15 +171,20 @@ int main(int argc, char** argv) {
     }
     mlshell::Simulation sim(PETSC_COMM_WORLD, std::move(scene),
                             mlshell::SimulationOptions::from_petsc_options());
-    PetscCallAbort(PETSC_COMM_WORLD, sim.run(&status));
+    PetscCallAbort(PETSC_COMM_WORLD, PetscPushErrorHandler(OptionErrors::handler, &option_errors));
+    const PetscErrorCode error = sim.run(&status);
+    PetscCallAbort(PETSC_COMM_WORLD, PetscPopErrorHandler());
+    if (error && option_errors.message.empty()) PETSCABORT(PETSC_COMM_WORLD, error);
+    if (error) throw mlshell::SceneError(option_errors.message);
   } catch (const mlshell::OutputError& e) {
     // Output is written by rank 0 alone; the other ranks cannot be told to stop cleanly.
     std::cerr << "mlshell: error: " << e.what() << std::endl;
     if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 4);
     status = 4;
   } catch (const std::exception& e) {
-    // Scene, mesh and selection errors are raised identically on every rank.
-    if (rank == 0) std::cerr << "mlshell: error: " << e.what() << std::endl;
+    // Scene, mesh, selection and option errors are raised identically on every rank.
+    const std::string what = option_errors.message.empty() ? e.what() : option_errors.message;
+    if (rank == 0) std::cerr << "mlshell: error: " << what << std::endl;
     status = 2;
   }
   PetscFinalize();

@@ -241,7 +241,7 @@ TEST(Rmtr, RejectsNonsenseOptionsWithTheirNames) {
   MultilevelProblem problem(scene, levels, CageFrame::from(scene.geometry));
   Tao tao;
   register_trust_region_tao_types();
-  for (auto [name, value, needle] : {std::tuple{"-tao_rmtr_eta1", "0.9", "eta1 = 0.9"},
+  for (auto [name, value, needle] : {std::tuple{"-tao_rmtr_eta1", "0.9", "-tao_rmtr_eta1 = 0.9"},
                                      {"-tao_rmtr_eps_delta", "2", "eps_delta"},
                                      {"-tao_rmtr_mu1", "-1", "mu1"},
                                      {"-tao_rmtr_stagnation", "-1", "-tao_rmtr_stagnation"},
