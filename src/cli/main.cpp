@@ -104,6 +104,12 @@ struct OptionErrors {
     if (!self->message.empty()) return n;  // that error on its way up
     return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, nullptr);
   }
+  /// The handler for the lifetime of a scope, popped however the scope is left (an exception
+  /// from the solve included).
+  struct Scope {
+    explicit Scope(OptionErrors& errors) { PetscPushErrorHandler(handler, &errors); }
+    ~Scope() { PetscPopErrorHandler(); }
+  };
 };
 
 }  // namespace
@@ -171,9 +177,11 @@ int main(int argc, char** argv) {
     }
     mlshell::Simulation sim(PETSC_COMM_WORLD, std::move(scene),
                             mlshell::SimulationOptions::from_petsc_options());
-    PetscCallAbort(PETSC_COMM_WORLD, PetscPushErrorHandler(OptionErrors::handler, &option_errors));
-    const PetscErrorCode error = sim.run(&status);
-    PetscCallAbort(PETSC_COMM_WORLD, PetscPopErrorHandler());
+    PetscErrorCode error;
+    {
+      const OptionErrors::Scope catching(option_errors);
+      error = sim.run(&status);
+    }
     if (error && option_errors.message.empty()) PETSCABORT(PETSC_COMM_WORLD, error);
     if (error) throw mlshell::SceneError(option_errors.message);
   } catch (const mlshell::OutputError& e) {
