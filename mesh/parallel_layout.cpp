@@ -14,19 +14,15 @@ namespace {
 
 /// METIS k-way partition of the elements' dual graph (faces sharing an edge).
 std::vector<int> partition_elements(const Discretization& disc, int parts) {
-  const QuadMesh& mesh = disc.mesh();
-  std::vector<int> owner(mesh.num_faces(), 0);
+  std::vector<int> owner(disc.num_faces(), 0);
   if (parts == 1) return owner;
   const auto& elements = disc.elements();
-  std::vector<int> index_of(mesh.num_faces(), -1);
+  std::vector<int> index_of(disc.num_faces(), -1);
   for (size_t e = 0; e < elements.size(); ++e) index_of[elements[e]] = static_cast<int>(e);
-  const QuadAdjacency adj(mesh);
   std::vector<idx_t> xadj{0}, adjncy;
   for (int f : elements) {
-    for (int k = 0; k < 4; ++k) {
-      const int g = adj.across(f, k);
-      if (g >= 0 && index_of[g] >= 0) adjncy.push_back(index_of[g]);
-    }
+    for (int g : disc.neighbours(f))
+      if (index_of[g] >= 0) adjncy.push_back(index_of[g]);
     xadj.push_back(static_cast<idx_t>(adjncy.size()));
   }
   idx_t n = static_cast<idx_t>(elements.size()), ncon = 1, nparts = parts, objval = 0;
@@ -67,7 +63,7 @@ ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc,
   std::vector<char> local(np, 0);
   for (int f : disc.elements()) {
     const int r = face_owner_[f];
-    for (int v : disc.mesh().quads[f]) point_owner[v] = std::min(point_owner[v], r);
+    for (int v : disc.corners(f)) point_owner[v] = std::min(point_owner[v], r);
     for (int v : disc.stencil(f)) {
       stencil_owner[v] = std::min(stencil_owner[v], r);
       if (r == rank_) local[v] = 1;
@@ -184,7 +180,7 @@ PetscErrorCode ParallelLayout::create_coordinates(Vec* x) const {
   PetscScalar* a;
   PetscCall(VecGetArray(*x, &a));
   for (int i = 0; i < num_owned_; ++i)
-    for (int c = 0; c < 3; ++c) a[3 * i + c] = disc_.mesh().points[local_points_[i]][c];
+    for (int c = 0; c < 3; ++c) a[3 * i + c] = disc_.points()[local_points_[i]][c];
   PetscCall(VecRestoreArray(*x, &a));
   PetscFunctionReturn(0);
 }

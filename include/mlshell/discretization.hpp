@@ -1,79 +1,76 @@
-// Subdivision finite elements on one level (paper §5.2): the interior faces of a control mesh
-// are the elements, their one-rings the element stencils, and the limit-surface basis at Gauss
-// points is precomputed once (regular faces share a single table).
+// What the solvers, the parallel layout, the time stepper and the output see of one level of a
+// shell, whatever its kind: points that carry three displacement dofs each, elements whose
+// energies couple the points of their stencils, the adjacency of the elements (for METIS), the
+// boundary, a mesh size h, and the deformed surface sampled for output.
+//
+// Implementations: SubdivisionDiscretization (Catmull–Clark limit surfaces, paper 1; points are
+// control points, elements the interior faces of the cage) and TriangleDiscretization
+// (unstructured triangle meshes, paper 2; points are vertices, elements the triangles).
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
-#include "mlshell/limit_basis.hpp"
-#include "mlshell/quad_mesh.hpp"
+#include "mlshell/mesh_error.hpp"
 
 namespace mlshell {
 
-/// Gauss–Legendre rule on [0, 1].
-struct GaussRule {
-  std::vector<double> points, weights;
-  explicit GaussRule(int n);
+/// A surface sampled for output: points (3 per point), their displacements, and cells of
+/// `cell_size` point indices (4: quadrilaterals, 3: triangles).
+struct SurfaceSample {
+  std::vector<double> points;
+  std::vector<std::int64_t> cells;
+  std::vector<double> displacement;
+  int cell_size = 4;
+  /// Scalar fields per cell (name, one value per cell), e.g. a triangle's membrane strain.
+  std::vector<std::pair<std::string, std::vector<double>>> cell_data;
+  std::int64_t num_points() const { return static_cast<std::int64_t>(points.size() / 3); }
+  std::int64_t num_cells() const { return static_cast<std::int64_t>(cells.size()) / cell_size; }
 };
 
-/// Basis of one element at its quadrature points: w[(g * 6 + d) * size + i] is derivative slot d
-/// (BasisDerivative) of node i at quadrature point g.
-struct ElementBasis {
-  const int* nodes = nullptr;
-  int size = 0;
-  const double* w = nullptr;
-  double at(int g, int d, int i) const { return w[(g * 6 + d) * size + i]; }
-  const double* slot(int g, int d) const { return w + (g * 6 + d) * size; }
-};
-
-/// Edge k (corner k → k+1) of an interior face that lies on the domain boundary.
-struct BoundaryEdge {
-  int face = -1;
-  int edge = 0;
+/// Evaluates the deformed surface of one discretization at fixed sample points.
+class SurfaceSampling {
+ public:
+  virtual ~SurfaceSampling() = default;
+  /// The deformed surface for natural-order displacements `u` (3 per point; empty: the
+  /// reference surface).
+  virtual SurfaceSample sample(const std::vector<double>& u) const = 0;
 };
 
 class Discretization {
  public:
-  /// `mesh`: a level with interior faces and ghost ring; `gauss` points per direction (2..6).
-  Discretization(QuadMesh mesh, int gauss);
-
-  const QuadMesh& mesh() const { return mesh_; }
-  const LimitEvaluator& evaluator() const { return *evaluator_; }
-  int num_points() const { return mesh_.num_points(); }
-  int num_dofs() const { return 3 * mesh_.num_points(); }
-  /// Interior faces, i.e. the finite elements.
-  const std::vector<int>& elements() const { return elements_; }
-  const GaussRule& gauss() const { return gauss_; }
-  /// Tensor quadrature on [0,1]²: point g = (points[g % n], points[g / n]).
-  int num_quadrature_points() const { return gauss_n_ * gauss_n_; }
-  SurfacePoint quadrature_point(int face, int g) const;
-  double quadrature_weight(int g) const;
-  ElementBasis element_basis(int face) const;
-  const std::vector<BoundaryEdge>& boundary_edges() const { return boundary_edges_; }
-  /// Point at parameter s ∈ [0,1] along a boundary edge, and the face parameter direction that
-  /// crosses the edge (kDu or kDv).
-  SurfacePoint edge_point(const BoundaryEdge& e, double s) const;
-  /// Mean length of the interior faces' edges (the h of β = h^-σ).
-  double mesh_size() const { return mesh_size_; }
-  /// Control points of the element stencil of a face.
-  std::vector<int> stencil(int face) const;
-
- private:
-  QuadMesh mesh_;
-  std::unique_ptr<LimitEvaluator> evaluator_;
-  GaussRule gauss_;
-  int gauss_n_;
-  std::vector<int> elements_;
-  std::vector<BoundaryEdge> boundary_edges_;
-  double mesh_size_ = 0.0;
-  std::vector<double> regular_table_;  // [g][6][16]
-  struct Irregular {
-    std::vector<int> nodes;
-    std::vector<double> w;
-  };
-  std::vector<int> irregular_index_;  // per face, -1 if regular
-  std::vector<Irregular> irregular_;
+  virtual ~Discretization() = default;
+  /// "subdivision" or "triangle", for messages and output.
+  virtual std::string kind() const = 0;
+  /// Points carrying the dofs and their reference positions (natural order).
+  virtual int num_points() const = 0;
+  int num_dofs() const { return 3 * num_points(); }
+  virtual const std::vector<Point3>& points() const = 0;
+  /// Face indices run over 0..num_faces() − 1; the elements are the faces that carry energy
+  /// (a subdivision level's ghost faces do not).
+  virtual int num_faces() const = 0;
+  virtual const std::vector<int>& elements() const = 0;
+  /// Points whose dofs the energy of an element depends on (its Hessian couples them all).
+  virtual std::vector<int> stencil(int face) const = 0;
+  /// Points that take the rank of this element (its corners): ownership follows the elements.
+  virtual std::vector<int> corners(int face) const = 0;
+  /// Elements sharing an edge with an element: the dual graph that METIS partitions.
+  virtual std::vector<int> neighbours(int face) const = 0;
+  /// The boundary of the simulated surface as closed loops of points, each ordered along the
+  /// boundary; empty for a closed surface.
+  virtual std::vector<std::vector<int>> boundary_loops() const = 0;
+  /// The h of the penalty β = h^-σ and of tolerances: the mean element edge length (m).
+  virtual double mesh_size() const = 0;
+  /// Sampling of the surface for output, `samples` per element edge (ignored by kinds whose
+  /// elements are flat).
+  virtual std::unique_ptr<SurfaceSampling> sampling(int samples) const = 0;
 };
+
+/// 64-bit fingerprint of a discretization (point count and reference coordinates), for
+/// checkpoints.
+std::uint64_t discretization_fingerprint(const Discretization& disc);
 
 }  // namespace mlshell

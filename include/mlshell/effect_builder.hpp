@@ -5,7 +5,7 @@
 
 #include "mlshell/level_problem.hpp"
 #include "mlshell/scene.hpp"
-#include "mlshell/selection.hpp"
+#include "mlshell/subdivision/selection.hpp"
 
 namespace mlshell {
 
@@ -17,7 +17,8 @@ namespace mlshell {
 /// hierarchy must use the finest level's h, or the coarse levels minimise a different
 /// functional (β_l = h_l^-σ is 2^σ = 32 times softer per level for σ = 5) and RMTR's coarse
 /// corrections, which then slide along the boundary, are rejected by the fine level.
-std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Discretization& disc,
+std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
+                                                  const SubdivisionDiscretization& disc,
                                                   const ParallelLayout& layout,
                                                   const CageFrame& frame,
                                                   double penalty_mesh_size = 0.0);
@@ -28,7 +29,7 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Disc
 /// bounding box).
 struct PenaltyScale {
   double membrane_stiffness = 0.0, length = 0.0;
-  static PenaltyScale of(const MaterialSpec& material, const Discretization& disc);
+  static PenaltyScale of(const MaterialSpec& material, const SubdivisionDiscretization& disc);
 };
 
 /// The membrane stiffness of the paper's denim in its stiffer (weft) direction, k3·τ =

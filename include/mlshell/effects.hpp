@@ -13,15 +13,15 @@
 #include <memory>
 
 #include "mlshell/energy_term.hpp"
-#include "mlshell/material.hpp"
-#include "mlshell/shell_kinematics.hpp"
+#include "mlshell/shell/material.hpp"
+#include "mlshell/shell/shell_kinematics.hpp"
 
 namespace mlshell {
 
 /// Membrane and bending energy of the shell material (always present).
 class ShellElasticTerm final : public EnergyTerm {
  public:
-  ShellElasticTerm(const Discretization& disc, const ParallelLayout& layout,
+  ShellElasticTerm(const SubdivisionDiscretization& disc, const ParallelLayout& layout,
                    const MaterialSpec& material);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
@@ -37,7 +37,7 @@ class ShellElasticTerm final : public EnergyTerm {
   /// δ_p = Σ_i B_p,i u_i at quadrature point g, for p = 1, 2, 11, 12, 22.
   void surface_quantities(const Element& e, int g, const std::vector<double>& u,
                           double delta[15]) const;
-  const Discretization& disc_;
+  const SubdivisionDiscretization& disc_;
   std::vector<Element> elements_;
   std::vector<ShellReference> references_;  // per element and quadrature point
   std::unique_ptr<Material> material_;
@@ -49,8 +49,8 @@ class ShellElasticTerm final : public EnergyTerm {
 /// Its Hessian, the mass matrix over dt², is assembled once and added by add_constant_hessian.
 class InertiaTerm final : public EnergyTerm {
  public:
-  InertiaTerm(const Discretization& disc, const ParallelLayout& layout, double area_density,
-              double dt);
+  InertiaTerm(const SubdivisionDiscretization& disc, const ParallelLayout& layout,
+              double area_density, double dt);
   ~InertiaTerm() override;
   PetscErrorCode add_constant_hessian(Mat hess) const override;
   /// Sets û from local predictor values (3 per local point).

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "mlshell/discretization.hpp"
 #include "mlshell/parallel_layout.hpp"
+#include "mlshell/subdivision/subdivision_discretization.hpp"
 
 namespace mlshell {
 

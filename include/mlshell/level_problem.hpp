@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "mlshell/energy_term.hpp"
-#include "mlshell/material.hpp"
 #include "mlshell/objective.hpp"
+#include "mlshell/shell/material.hpp"
 
 namespace mlshell {
 

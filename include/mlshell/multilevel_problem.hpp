@@ -8,11 +8,11 @@
 #include <memory>
 #include <vector>
 
-#include "mlshell/level_hierarchy.hpp"
 #include "mlshell/level_problem.hpp"
 #include "mlshell/multilevel_objective.hpp"
 #include "mlshell/scene.hpp"
-#include "mlshell/selection.hpp"
+#include "mlshell/subdivision/level_hierarchy.hpp"
+#include "mlshell/subdivision/selection.hpp"
 
 namespace mlshell {
 

@@ -14,6 +14,8 @@
 #include <variant>
 #include <vector>
 
+#include "mlshell/discretization.hpp"
+
 namespace mlshell {
 
 class OutputError : public std::runtime_error {
@@ -30,14 +32,6 @@ struct MaterialSpec;
 /// point lies in the model (continuation, coupling limit). CSV columns: kind, e11, e22, e12,
 /// psi, s11, s22, s12, beyond_fit, coupling_limited.
 void write_material_table(const MaterialSpec& spec, const std::filesystem::path& path);
-
-/// A sampled surface: `points` holds 3 doubles per point, `quads` 4 point indices per quad
-/// (counter-clockwise), `displacement` 3 doubles per point (may be empty).
-struct SurfaceSample {
-  std::vector<double> points;
-  std::vector<std::int64_t> quads;
-  std::vector<double> displacement;
-};
 
 /// Wavefront OBJ of a sampled surface (v and f lines, 1-based indices, `%.17g` coordinates).
 void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
@@ -64,8 +58,10 @@ class XdmfSeries {
     int step;
     double time;
     std::string h5;
-    std::int64_t npoints, nquads;
-    bool displacement = false;  ///< whether the HDF5 file holds /displacement
+    std::int64_t npoints, ncells;
+    bool displacement = false;             ///< whether the HDF5 file holds /displacement
+    int cell_size = 4;                     ///< 4 quadrilaterals, 3 triangles
+    std::vector<std::string> cell_fields;  ///< scalar cell datasets /cell_<name>
   };
   std::vector<Frame> frames_;
 };

@@ -27,15 +27,15 @@
 #include <string>
 #include <vector>
 
-#include "mlshell/discretization.hpp"
 #include "mlshell/effect_builder.hpp"
 #include "mlshell/hessian_spectrum.hpp"
-#include "mlshell/level_hierarchy.hpp"
 #include "mlshell/multilevel_problem.hpp"
 #include "mlshell/parallel_layout.hpp"
 #include "mlshell/scene.hpp"
 #include "mlshell/step_solver.hpp"
-#include "mlshell/subdivision_hierarchy.hpp"
+#include "mlshell/subdivision/level_hierarchy.hpp"
+#include "mlshell/subdivision/subdivision_discretization.hpp"
+#include "mlshell/subdivision/subdivision_hierarchy.hpp"
 
 namespace mlshell {
 
@@ -61,7 +61,7 @@ class Simulation {
   /// Runs the scene (or only evaluates it). Returns the exit status.
   PetscErrorCode run(int* status);
 
-  const Discretization& discretization() const { return *disc_; }
+  const SubdivisionDiscretization& discretization() const { return *disc_; }
   LevelProblem& problem() { return *problem_; }
   Vec displacement() const { return u_; }
   /// Solver iterations summed over the steps run so far.
@@ -87,9 +87,9 @@ class Simulation {
   SimulationOptions options_;
   CageFrame frame_;
   std::unique_ptr<SubdivisionHierarchy> hierarchy_;
-  std::unique_ptr<LevelHierarchy> levels_;         // all levels for RMTR, else the finest alone
-  std::unique_ptr<MultilevelProblem> multilevel_;  // the scene on each of them
-  const Discretization* disc_ = nullptr;           // the finest level's
+  std::unique_ptr<LevelHierarchy> levels_;           // all levels for RMTR, else the finest alone
+  std::unique_ptr<MultilevelProblem> multilevel_;    // the scene on each of them
+  const SubdivisionDiscretization* disc_ = nullptr;  // the finest level's
   const ParallelLayout* layout_ = nullptr;
   LevelProblem* problem_ = nullptr;
   std::unique_ptr<StepSolver> solver_;
@@ -119,8 +119,5 @@ class Simulation {
 
 /// Builds the level-0 cage with its ghost ring from the scene's geometry.
 QuadMesh build_cage(const GeometrySpec& geometry);
-
-/// 64-bit fingerprint of a discretization (point count and reference coordinates).
-std::uint64_t discretization_fingerprint(const Discretization& disc);
 
 }  // namespace mlshell

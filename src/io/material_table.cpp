@@ -3,8 +3,8 @@
 #include <sstream>
 
 #include "io_util.hpp"
-#include "mlshell/material.hpp"
 #include "mlshell/output_files.hpp"
+#include "mlshell/shell/material.hpp"
 
 namespace mlshell {
 

@@ -19,19 +19,28 @@ void check_surface(const SurfaceSample& s, const char* who) {
   if (s.points.size() % 3 != 0)
     throw std::invalid_argument(where + "points must hold 3 coordinates per point (got " +
                                 std::to_string(s.points.size()) + " values)");
-  if (s.quads.size() % 4 != 0)
-    throw std::invalid_argument(where + "quads must hold 4 indices per quad (got " +
-                                std::to_string(s.quads.size()) + " values)");
+  if (s.cell_size != 3 && s.cell_size != 4)
+    throw std::invalid_argument(where + "cells must be triangles or quads (cell_size " +
+                                std::to_string(s.cell_size) + ")");
+  if (s.cells.size() % s.cell_size != 0)
+    throw std::invalid_argument(where + "cells must hold " + std::to_string(s.cell_size) +
+                                " indices per cell (got " + std::to_string(s.cells.size()) +
+                                " values)");
+  for (const auto& [name, values] : s.cell_data)
+    if (values.size() != s.cells.size() / s.cell_size)
+      throw std::invalid_argument(where + "cell field '" + name + "' has " +
+                                  std::to_string(values.size()) + " values for " +
+                                  std::to_string(s.cells.size() / s.cell_size) + " cells");
   if (!s.displacement.empty() && s.displacement.size() != s.points.size())
     throw std::invalid_argument(where + "displacement must be empty or hold 3 values per point (" +
                                 std::to_string(s.displacement.size()) + " values for " +
                                 std::to_string(s.points.size() / 3) + " points)");
   const auto npoints = static_cast<std::int64_t>(s.points.size() / 3);
-  for (std::size_t i = 0; i < s.quads.size(); ++i) {
-    if (s.quads[i] < 0 || s.quads[i] >= npoints)
-      throw std::invalid_argument(where + "quad " + std::to_string(i / 4) + " refers to point " +
-                                  std::to_string(s.quads[i]) + " but there are " +
-                                  std::to_string(npoints) + " points");
+  for (std::size_t i = 0; i < s.cells.size(); ++i) {
+    if (s.cells[i] < 0 || s.cells[i] >= npoints)
+      throw std::invalid_argument(where + "cell " + std::to_string(i / s.cell_size) +
+                                  " refers to point " + std::to_string(s.cells[i]) +
+                                  " but there are " + std::to_string(npoints) + " points");
   }
 }
 

@@ -45,8 +45,10 @@ void check_petsc(PetscErrorCode ierr, const std::filesystem::path& file, const c
 struct FrameObjects {
   PetscViewer viewer = nullptr;
   Vec geometry = nullptr, displacement = nullptr;
+  std::vector<Vec> fields;
   IS topology = nullptr;
   ~FrameObjects() {
+    for (Vec& v : fields) VecDestroy(&v);
     if (geometry) VecDestroy(&geometry);
     if (displacement) VecDestroy(&displacement);
     if (topology) ISDestroy(&topology);
@@ -62,11 +64,11 @@ PetscInt to_petsc_size(std::size_t n, const std::filesystem::path& file) {
 }
 
 void write_vector(PetscViewer viewer, Vec& v, const std::vector<double>& data, const char* name,
-                  const std::filesystem::path& file) {
+                  const std::filesystem::path& file, PetscInt block = 3) {
   // The Vec borrows the caller's array (no copy); block size 3 makes the dataset N×3.
-  check_petsc(
-      VecCreateSeqWithArray(PETSC_COMM_SELF, 3, to_petsc_size(data.size(), file), data.data(), &v),
-      file, "VecCreateSeqWithArray");
+  check_petsc(VecCreateSeqWithArray(PETSC_COMM_SELF, block, to_petsc_size(data.size(), file),
+                                    data.data(), &v),
+              file, "VecCreateSeqWithArray");
   check_petsc(PetscObjectSetName(reinterpret_cast<PetscObject>(v), name), file,
               "PetscObjectSetName");
   check_petsc(VecView(v, viewer), file, "VecView");
@@ -86,17 +88,21 @@ void write_frame_h5(const std::filesystem::path& file, const SurfaceSample& s) {
 
     // Indices are PetscInt in the file (an IS cannot hold anything else); check_surface has
     // bounded them by the point count, which to_petsc_size has bounded by PetscInt's range.
-    std::vector<PetscInt> idx(s.quads.begin(), s.quads.end());
+    std::vector<PetscInt> idx(s.cells.begin(), s.cells.end());
     check_petsc(ISCreateGeneral(PETSC_COMM_SELF, to_petsc_size(idx.size(), file), idx.data(),
                                 PETSC_USE_POINTER, &o.topology),
                 file, "ISCreateGeneral");
-    check_petsc(ISSetBlockSize(o.topology, 4), file, "ISSetBlockSize");
+    check_petsc(ISSetBlockSize(o.topology, s.cell_size), file, "ISSetBlockSize");
     check_petsc(PetscObjectSetName(reinterpret_cast<PetscObject>(o.topology), "topology"), file,
                 "PetscObjectSetName");
     check_petsc(ISView(o.topology, o.viewer), file, "ISView");
 
     if (!s.displacement.empty())
       write_vector(o.viewer, o.displacement, s.displacement, "displacement", file);
+    o.fields.resize(s.cell_data.size(), nullptr);
+    for (std::size_t k = 0; k < s.cell_data.size(); ++k)
+      write_vector(o.viewer, o.fields[k], s.cell_data[k].second,
+                   ("cell_" + s.cell_data[k].first).c_str(), file, 1);
 
     check_petsc(PetscViewerDestroy(&o.viewer), file, "PetscViewerDestroy (closing the file)");
   } catch (...) {
@@ -136,7 +142,7 @@ std::string xml_escape(const std::string& s) {
 }
 
 std::string data_item(std::int64_t rows, int cols, const char* number_type, std::size_t precision,
-                      const std::string& h5, const char* dataset) {
+                      const std::string& h5, const std::string& dataset) {
   return "<DataItem Dimensions=\"" + std::to_string(rows) + " " + std::to_string(cols) +
          "\" NumberType=\"" + number_type + "\" Precision=\"" + std::to_string(precision) +
          "\" Format=\"HDF\">" + xml_escape(h5) + ":/" + dataset + "</DataItem>";
@@ -158,8 +164,8 @@ void XdmfSeries::add_frame(int step, double time, const SurfaceSample& surface) 
   io_detail::check_surface(surface, "XdmfSeries::add_frame");
   if (step < 0) throw std::invalid_argument("XdmfSeries::add_frame: negative step");
   // HDF5 datasets of zero extent are not worth supporting: a frame without points is a bug.
-  if (surface.points.empty() || surface.quads.empty())
-    throw std::invalid_argument("XdmfSeries::add_frame: the surface has no points or no quads");
+  if (surface.points.empty() || surface.cells.empty())
+    throw std::invalid_argument("XdmfSeries::add_frame: the surface has no points or no cells");
 
   char name[32];
   std::snprintf(name, sizeof name, "_%06d.h5", step);
@@ -171,8 +177,11 @@ void XdmfSeries::add_frame(int step, double time, const SurfaceSample& surface) 
           time,
           h5,
           static_cast<std::int64_t>(surface.points.size() / 3),
-          static_cast<std::int64_t>(surface.quads.size() / 4),
-          !surface.displacement.empty()};
+          surface.num_cells(),
+          !surface.displacement.empty(),
+          surface.cell_size,
+          {}};
+  for (const auto& field : surface.cell_data) f.cell_fields.push_back(field.first);
   // A restarted run may repeat a step: its new file replaced the old one, so replace the entry.
   auto same =
       std::find_if(frames_.begin(), frames_.end(), [&](const Frame& g) { return g.step == step; });
@@ -193,9 +202,11 @@ void XdmfSeries::add_frame(int step, double time, const SurfaceSample& surface) 
     std::snprintf(grid, sizeof grid, "step_%06d", g.step);
     x += "      <Grid Name=\"" + std::string(grid) + "\" GridType=\"Uniform\">\n";
     x += "        <Time Value=\"" + io_detail::format_double(g.time) + "\"/>\n";
-    x += "        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" +
-         std::to_string(g.nquads) + "\">\n";
-    x += "          " + data_item(g.nquads, 4, "Int", sizeof(PetscInt), g.h5, "topology") + "\n";
+    x += std::string("        <Topology TopologyType=\"") +
+         (g.cell_size == 3 ? "Triangle" : "Quadrilateral") + "\" NumberOfElements=\"" +
+         std::to_string(g.ncells) + "\">\n";
+    x += "          " +
+         data_item(g.ncells, g.cell_size, "Int", sizeof(PetscInt), g.h5, "topology") + "\n";
     x += "        </Topology>\n";
     x += "        <Geometry GeometryType=\"XYZ\">\n";
     x += "          " + data_item(g.npoints, 3, "Float", sizeof(double), g.h5, "geometry") + "\n";
@@ -203,6 +214,13 @@ void XdmfSeries::add_frame(int step, double time, const SurfaceSample& surface) 
     if (g.displacement) {
       x += "        <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n";
       x += "          " + data_item(g.npoints, 3, "Float", sizeof(double), g.h5, "displacement") +
+           "\n";
+      x += "        </Attribute>\n";
+    }
+    for (const std::string& name : g.cell_fields) {
+      x += "        <Attribute Name=\"" + xml_escape(name) +
+           "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+      x += "          " + data_item(g.ncells, 1, "Float", sizeof(double), g.h5, "cell_" + name) +
            "\n";
       x += "        </Attribute>\n";
     }

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mlshell/material.hpp"
+#include "mlshell/shell/material.hpp"
 #include "scene_sections.hpp"
 
 namespace mlshell::scene_reading {

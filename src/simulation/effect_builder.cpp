@@ -10,7 +10,7 @@
 
 namespace mlshell {
 
-PenaltyScale PenaltyScale::of(const MaterialSpec& material, const Discretization& disc) {
+PenaltyScale PenaltyScale::of(const MaterialSpec& material, const SubdivisionDiscretization& disc) {
   PenaltyScale s;
   double Y = 0.0;
   if (const auto* c = std::get_if<ClydeMaterial>(&material.model))
@@ -49,7 +49,7 @@ struct LocalPoint {
   Point3 xu, xv;
 };
 
-LocalPoint local_point(const Discretization& disc, const ParallelLayout& layout,
+LocalPoint local_point(const SubdivisionDiscretization& disc, const ParallelLayout& layout,
                        const SurfacePoint& p) {
   LocalPoint lp;
   lp.basis = disc.evaluator().evaluate({p})[0];
@@ -67,7 +67,8 @@ struct EdgeSample {
   std::vector<double> conormal;
 };
 
-std::vector<EdgeSample> edge_samples(const Discretization& disc, const ParallelLayout& layout,
+std::vector<EdgeSample> edge_samples(const SubdivisionDiscretization& disc,
+                                     const ParallelLayout& layout,
                                      const std::vector<BoundaryEdge>& edges) {
   std::vector<EdgeSample> out;
   const GaussRule& rule = disc.gauss();
@@ -94,7 +95,7 @@ std::vector<EdgeSample> edge_samples(const Discretization& disc, const ParallelL
 }
 
 /// Local force array of an area load with density `f` (N/m²) over this rank's elements.
-std::vector<double> area_force(const Discretization& disc, const ParallelLayout& layout,
+std::vector<double> area_force(const SubdivisionDiscretization& disc, const ParallelLayout& layout,
                                const Vec3& f) {
   std::vector<double> force(3 * layout.num_local_points(), 0.0);
   for (int face : layout.local_elements()) {
@@ -110,7 +111,8 @@ std::vector<double> area_force(const Discretization& disc, const ParallelLayout&
   return force;
 }
 
-SurfacePoint resolve_point(const Discretization& disc, const Where& where, const CageFrame& frame) {
+SurfacePoint resolve_point(const SubdivisionDiscretization& disc, const Where& where,
+                           const CageFrame& frame) {
   return select_point(disc, std::get<PointSelection>(where.selection), frame, where.text);
 }
 
@@ -123,7 +125,8 @@ std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motio
   };
 }
 
-std::unique_ptr<EnergyTerm> penalty_term(const std::string& name, const Discretization& disc,
+std::unique_ptr<EnergyTerm> penalty_term(const std::string& name,
+                                         const SubdivisionDiscretization& disc,
                                          const ParallelLayout& layout, const Where& where,
                                          const CageFrame& frame, double beta, double beta_rot,
                                          bool clamp, std::array<bool, 3> components,
@@ -149,7 +152,8 @@ std::unique_ptr<EnergyTerm> penalty_term(const std::string& name, const Discreti
 
 }  // namespace
 
-std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene, const Discretization& disc,
+std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
+                                                  const SubdivisionDiscretization& disc,
                                                   const ParallelLayout& layout,
                                                   const CageFrame& frame,
                                                   double penalty_mesh_size) {

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "mlshell/effects.hpp"
-#include "mlshell/level_hierarchy.hpp"
 #include "mlshell/output_files.hpp"
+#include "mlshell/subdivision/level_hierarchy.hpp"
 #include "simulation_output.hpp"
 
 namespace mlshell {
@@ -89,18 +89,6 @@ QuadMesh build_cage(const GeometrySpec& geometry) {
     cage = read_obj_cage(std::get<ObjCage>(geometry.cage).path);
   }
   return add_ghost_ring(cage);
-}
-
-std::uint64_t discretization_fingerprint(const Discretization& disc) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&](const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
-  const int n = disc.num_points();
-  mix(&n, sizeof n);
-  for (const Point3& p : disc.mesh().points) mix(p.data(), 3 * sizeof(double));
-  return h;
 }
 
 Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)

@@ -9,7 +9,7 @@
 
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
-#include "mlshell/surface_sampler.hpp"
+#include "mlshell/subdivision/surface_sampler.hpp"
 
 namespace mlshell {
 

@@ -6,14 +6,14 @@
 #include <petscsys.h>
 
 #include "mlshell/effects.hpp"
-#include "mlshell/subdivision_hierarchy.hpp"
+#include "mlshell/subdivision/subdivision_hierarchy.hpp"
 
 using namespace mlshell;
 
 namespace {
 
 struct Fixture {
-  Discretization disc;
+  SubdivisionDiscretization disc;
   ParallelLayout layout;
   MaterialSpec material;
   std::unique_ptr<ShellElasticTerm> term;

@@ -6,7 +6,7 @@
 #include <benchmark/benchmark.h>
 #include <petscsys.h>
 
-#include "mlshell/level_hierarchy.hpp"
+#include "mlshell/subdivision/level_hierarchy.hpp"
 
 using namespace mlshell;
 
@@ -30,7 +30,7 @@ void BM_ApplyTransfer(benchmark::State& state) {
   const int refine = static_cast<int>(state.range(0)), op = static_cast<int>(state.range(1));
   SubdivisionHierarchy sub(square(), refine);
   LevelHierarchy levels(PETSC_COMM_SELF, sub, refine - 1, 3);
-  Mat A = op == 0 ? levels.prolongation(0)
+  Mat A = op == 0   ? levels.prolongation(0)
           : op == 1 ? levels.restriction(0)
           : op == 2 ? levels.projection(0)
                     : levels.prolongation(0);

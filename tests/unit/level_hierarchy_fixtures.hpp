@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "mlshell/level_hierarchy.hpp"
+#include "mlshell/subdivision/level_hierarchy.hpp"
 #include "physics_fixtures.hpp"
 
 namespace mlshell {

@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "mlshell/quad_mesh.hpp"
+#include "mlshell/subdivision/quad_mesh.hpp"
 
 namespace mlshell {
 

@@ -9,7 +9,7 @@
 #include "mlshell/effect_builder.hpp"
 #include "mlshell/effects.hpp"
 #include "mlshell/simulation.hpp"
-#include "mlshell/subdivision_hierarchy.hpp"
+#include "mlshell/subdivision/subdivision_hierarchy.hpp"
 
 namespace mlshell {
 
@@ -41,7 +41,7 @@ inline QuadMesh fan_cage(int valence, bool near_boundary = false) {
 
 struct TestProblem {
   Scene scene;
-  std::unique_ptr<Discretization> disc;
+  std::unique_ptr<SubdivisionDiscretization> disc;
   std::unique_ptr<ParallelLayout> layout;
   std::unique_ptr<LevelProblem> problem;
 
@@ -81,7 +81,8 @@ struct TestProblem {
       scene.effects.push_back(GravityEffect{});
       scene.effects.push_back(DirichletEffect{{box, "box"}, {true, true, true}, {}, 5.0, {}});
     }
-    disc = std::make_unique<Discretization>(SubdivisionHierarchy(cage, refine).finest(), 3);
+    disc =
+        std::make_unique<SubdivisionDiscretization>(SubdivisionHierarchy(cage, refine).finest(), 3);
     layout = std::make_unique<ParallelLayout>(comm, *disc);
     problem = build_level_problem(scene, *disc, *layout, frame);
     problem->set_time(1.0);

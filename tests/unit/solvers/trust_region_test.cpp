@@ -1,0 +1,240 @@
+// Trust-region subproblems (Dogleg, Steihaug–Toint CG) and Local_TR (TAO type "tr").
+#include "mlshell/trust_region.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "mlshell/simulation.hpp"
+#include "mlshell/step_solver.hpp"
+#include "mlshell/trust_region_qp.hpp"
+#include "physics_fixtures.hpp"
+
+using namespace mlshell;
+
+namespace {
+
+/// A diagonal matrix and a vector on PETSC_COMM_SELF.
+struct SmallModel {
+  Mat H;
+  Vec g, s;
+  SmallModel(std::vector<double> diag, std::vector<double> grad) {
+    const PetscInt n = static_cast<PetscInt>(diag.size());
+    MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 1, nullptr, &H);
+    MatSetOption(H, MAT_SYMMETRIC, PETSC_TRUE);
+    for (PetscInt i = 0; i < n; ++i) MatSetValue(H, i, i, diag[i], INSERT_VALUES);
+    MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY);
+    MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY);
+    VecCreateSeq(PETSC_COMM_SELF, n, &g);
+    VecDuplicate(g, &s);
+    for (PetscInt i = 0; i < n; ++i) VecSetValue(g, i, grad[i], INSERT_VALUES);
+    VecAssemblyBegin(g);
+    VecAssemblyEnd(g);
+  }
+  ~SmallModel() {
+    MatDestroy(&H);
+    VecDestroy(&g);
+    VecDestroy(&s);
+  }
+  /// Sufficient decrease (SDC) with κ = 0.5, the Cauchy point's guarantee.
+  bool sufficient_decrease(const QpResult& r, double radius) const {
+    PetscReal gnorm, hnorm;
+    VecNorm(g, NORM_2, &gnorm);
+    MatNorm(H, NORM_FROBENIUS, &hnorm);
+    return r.model_decrease >= 0.5 * gnorm * std::min(gnorm / (1.0 + hnorm), radius) - 1e-14;
+  }
+};
+
+}  // namespace
+
+TEST(TrustRegionQp, DoglegTakesTheNewtonStepInsideTheRegion) {
+  SmallModel m({2.0, 4.0, 1.0}, {1.0, -2.0, 0.5});
+  DoglegQp qp(PETSC_COMM_SELF, "test_dogleg_newton_");
+  qp.set_operator(m.H);
+  QpResult r;
+  qp.solve(m.g, 10.0, m.s, r);
+  EXPECT_STREQ(r.kind, "newton");
+  const PetscScalar* s;
+  VecGetArrayRead(m.s, &s);
+  EXPECT_NEAR(s[0], -0.5, 1e-14);
+  EXPECT_NEAR(s[1], 0.5, 1e-14);
+  EXPECT_NEAR(s[2], -0.5, 1e-14);
+  VecRestoreArrayRead(m.s, &s);
+  // Between the Cauchy point (‖p_C‖ = 0.659) and the Newton point (0.866): the dogleg path,
+  // on the boundary, with sufficient decrease; inside ‖p_C‖: the Cauchy point on the boundary.
+  qp.solve(m.g, 0.75, m.s, r);
+  EXPECT_STREQ(r.kind, "dogleg");
+  EXPECT_NEAR(r.step_norm, 0.75, 1e-12);
+  EXPECT_TRUE(m.sufficient_decrease(r, 0.75));
+  qp.solve(m.g, 0.5, m.s, r);
+  EXPECT_STREQ(r.kind, "cauchy");
+  EXPECT_NEAR(r.step_norm, 0.5, 1e-12);
+  EXPECT_TRUE(m.sufficient_decrease(r, 0.5));
+}
+
+TEST(TrustRegionQp, DoglegHandlesAnIndefiniteHessian) {
+  // Negative curvature along g: steepest descent to the boundary; a finite step, never NaN.
+  SmallModel m({1.0, -3.0}, {0.1, 1.0});
+  DoglegQp qp(PETSC_COMM_SELF, "test_dogleg_indefinite_");
+  qp.set_operator(m.H);
+  QpResult r;
+  qp.solve(m.g, 0.7, m.s, r);
+  EXPECT_STREQ(r.kind, "cauchy");
+  EXPECT_TRUE(std::isfinite(r.step_norm));
+  EXPECT_NEAR(r.step_norm, 0.7, 1e-12);
+  EXPECT_GT(r.model_decrease, 0.0);
+  EXPECT_TRUE(m.sufficient_decrease(r, 0.7));
+  // Positive curvature along g, and even along the Newton point, but an indefinite H (found by
+  // the inertia of the LDLᵀ factor): the Cauchy point is used.
+  SmallModel n({1.0, -0.01}, {1.0, 0.01});
+  ASSERT_EQ(qp.set_operator(n.H), 0);
+  ASSERT_EQ(qp.solve(n.g, 100.0, n.s, r), 0);
+  EXPECT_STREQ(r.kind, "cauchy");
+  EXPECT_GT(r.model_decrease, 0.0);
+}
+
+TEST(TrustRegionQp, DoglegUsesAShiftedNewtonPointWhenItBeatsTheCauchyPoint) {
+  // H = diag(1, 4, −0.001), g = (1, 1, 0.001): positive curvature along g, one small negative
+  // eigenvalue. Cauchy: m = −0.4. The Newton point of H + λI (λ = 4e-3, the first tenfold shift
+  // that is positive definite) gives m ≈ −0.62: taken, inside the region, and finite.
+  SmallModel m({1.0, 4.0, -0.001}, {1.0, 1.0, 0.001});
+  DoglegQp qp(PETSC_COMM_SELF, "test_dogleg_shift_");
+  ASSERT_EQ(qp.set_operator(m.H), 0);
+  QpResult r;
+  ASSERT_EQ(qp.solve(m.g, 100.0, m.s, r), 0);
+  EXPECT_STREQ(r.kind, "shifted");
+  EXPECT_TRUE(std::isfinite(r.step_norm));
+  EXPECT_GT(r.model_decrease, 0.6);
+  PetscReal model;
+  quadratic_model(m.H, m.g, m.s, &model);
+  EXPECT_NEAR(r.model_decrease, -model, 1e-14);
+  EXPECT_TRUE(m.sufficient_decrease(r, 100.0));
+  // A small region: the dogleg path of the shifted point, cut at the boundary.
+  ASSERT_EQ(qp.solve(m.g, 0.8, m.s, r), 0);
+  EXPECT_NEAR(r.step_norm, 0.8, 1e-12);
+  EXPECT_TRUE(m.sufficient_decrease(r, 0.8));
+}
+
+TEST(TrustRegionQp, SteihaugTointStopsOnNegativeCurvatureAtTheBoundary) {
+  SmallModel m({1.0, -2.0, 3.0}, {0.3, 0.5, -0.2});
+  SteihaugTointQp qp(PETSC_COMM_SELF, "test_stcg_", 10);
+  qp.set_operator(m.H);
+  QpResult r;
+  qp.solve(m.g, 0.4, m.s, r);
+  EXPECT_STREQ(r.kind, "boundary");
+  EXPECT_NEAR(r.step_norm, 0.4, 1e-10);
+  PetscReal model;
+  quadratic_model(m.H, m.g, m.s, &model);
+  EXPECT_NEAR(r.model_decrease, -model, 1e-12);  // KSPCGGetObjFcn is the model value
+  EXPECT_TRUE(m.sufficient_decrease(r, 0.4));
+}
+
+namespace {
+
+/// The energy and the gradient norm after every iteration (and at the start).
+struct History {
+  std::vector<double> f, gnorm;
+  size_t size() const { return f.size(); }
+  double operator[](size_t i) const { return f[i]; }
+};
+
+PetscErrorCode record_energy(Tao tao, void* ctx) {
+  PetscReal f, g;
+  PetscFunctionBeginUser;
+  PetscCall(TaoGetSolutionStatus(tao, nullptr, &f, &g, nullptr, nullptr, nullptr));
+  static_cast<History*>(ctx)->f.push_back(f);
+  static_cast<History*>(ctx)->gnorm.push_back(g);
+  PetscFunctionReturn(0);
+}
+
+/// Solves the first step of a scene (refine 1) from u = 0 with the given TAO type; returns the
+/// solution (natural order), the energy after every iteration and whether it converged.
+struct TaoRun {
+  std::vector<double> u;
+  History history;
+  double gradient_tolerance = 0;
+  bool converged = false;
+  int iterations = 0;
+  TrustRegionStatistics stats;  // for type "tr"
+};
+
+TaoRun run(const char* example, const char* type, MPI_Comm comm) {
+  PetscOptionsSetValue(nullptr, "-tao_type", type);
+  Scene scene = parse_scene(std::filesystem::path(MLSHELL_SOURCE_DIR) / "examples" / example);
+  scene.geometry.refine = 1;
+  SubdivisionDiscretization disc(SubdivisionHierarchy(build_cage(scene.geometry), 1).finest(), 3);
+  ParallelLayout layout(comm, disc);
+  auto problem = build_level_problem(scene, disc, layout, CageFrame::from(scene.geometry));
+  problem->set_time(scene.time.dt);
+  TaoRun out;
+  {
+    StepSolver solver(*problem);
+    TaoSetMonitor(solver.tao(), record_energy, &out.history, nullptr);
+    Vec u;
+    layout.create_vector(&u);
+    SolveReport report;
+    solver.solve(u, report);
+    out.converged = report.converged;
+    out.iterations = report.iterations;
+    out.gradient_tolerance = report.gradient_tolerance;
+    if (std::string(type) == "tr") trust_region_statistics(solver.tao(), &out.stats);
+    layout.gather_natural(u, out.u);
+    VecDestroy(&u);
+  }
+  PetscOptionsClearValue(nullptr, "-tao_type");
+  return out;
+}
+
+}  // namespace
+
+TEST(LocalTrustRegion, ConvergesToTheMinimiserOfPetscsTrustRegionWithMonotoneEnergy) {
+  for (const char* example : {"plate.yaml", "trampoline.yaml"}) {
+    const TaoRun tr = run(example, "tr", PETSC_COMM_SELF);
+    const TaoRun bntr = run(example, "bntr", PETSC_COMM_SELF);
+    ASSERT_TRUE(tr.converged) << example;
+    ASSERT_TRUE(bntr.converged) << example;
+    double diff = 0, norm = 0;
+    for (size_t i = 0; i < tr.u.size(); ++i) {
+      diff = std::max(diff, std::abs(tr.u[i] - bntr.u[i]));
+      norm = std::max(norm, std::abs(bntr.u[i]));
+    }
+    EXPECT_LT(diff, 1e-6 * norm) << example;
+    ASSERT_GT(tr.history.size(), 2u) << example;
+    // Work counts: one QP and one trial evaluation per iteration; Hessians only at the start and
+    // after accepted steps.
+    EXPECT_EQ(tr.stats.qp_solves, tr.iterations) << example;
+    EXPECT_EQ(tr.stats.objectives, tr.iterations) << example;
+    EXPECT_EQ(tr.stats.hessians, tr.stats.accepted + 1) << example;
+    EXPECT_LE(tr.stats.accepted, tr.iterations) << example;
+    for (size_t i = 1; i < tr.history.size(); ++i)
+      EXPECT_LE(tr.history[i], tr.history[i - 1]) << example << ": energy rose at iteration " << i;
+  }
+}
+
+TEST(NewtonBaselines, DampedNewtonAndLinearizedEquationBehaveAsSpecified) {
+  // Damped Newton with α = 0.3 on the (nearly linear) plate: each iteration takes 0.3 of the
+  // Newton step, so the gradient shrinks by 1 − α = 0.7 per iteration until the tolerance is met.
+  const TaoRun damped = run("plate.yaml", "dampednewton", PETSC_COMM_SELF);
+  ASSERT_TRUE(damped.converged);
+  const std::vector<double>& g = damped.history.gnorm;
+  ASSERT_GE(g.size(), 20u);
+  for (size_t i = 1; i < g.size(); ++i)
+    EXPECT_NEAR(g[i] / g[i - 1], 0.7, 0.02)
+        << "iteration " << i << ": |g| " << g[i - 1] << " -> " << g[i];
+  // As many iterations as the rate needs to bring |g| to the tolerance, and not one more.
+  EXPECT_LE(g.back(), damped.gradient_tolerance);
+  EXPECT_GT(g[g.size() - 2], damped.gradient_tolerance);
+  // The linearized equation: exactly one Newton step, which on the nearly linear plate lands
+  // close to the minimiser. It is reported converged exactly when that step meets the tolerance.
+  const TaoRun linearized = run("plate.yaml", "linearized", PETSC_COMM_SELF);
+  ASSERT_EQ(linearized.history.size(), 2u);  // the initial point and one step
+  const double g1 = linearized.history.gnorm[1];
+  EXPECT_LT(g1, 0.5 * linearized.history.gnorm[0]);
+  EXPECT_EQ(linearized.converged, g1 <= linearized.gradient_tolerance) << "|g| = " << g1;
+  double diff = 0, norm = 0;
+  for (size_t i = 0; i < damped.u.size(); ++i) {
+    diff = std::max(diff, std::abs(linearized.u[i] - damped.u[i]));
+    norm = std::max(norm, std::abs(damped.u[i]));
+  }
+  EXPECT_LT(diff, 1e-3 * norm);
+}
