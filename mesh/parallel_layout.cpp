@@ -131,7 +131,8 @@ PetscErrorCode ParallelLayout::create_vector(Vec* v) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ParallelLayout::create_matrix(Mat* A) const {
+PetscErrorCode ParallelLayout::create_matrix(Mat* A,
+                                             const std::vector<std::array<int, 2>>& extra) const {
   PetscFunctionBeginUser;
   // Block rows owned here: count coupled blocks, on- and off-diagonal, over every element
   // (any rank's) whose stencil contains the row.
@@ -144,6 +145,10 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A) const {
     for (int v : st)
       if (owned_index[v] >= 0)
         for (int w : st) coupled[owned_index[v]].push_back(petsc_of_natural_[w]);
+  }
+  for (const auto& [a, b] : extra) {
+    if (owned_index[a] >= 0) coupled[owned_index[a]].push_back(petsc_of_natural_[b]);
+    if (owned_index[b] >= 0) coupled[owned_index[b]].push_back(petsc_of_natural_[a]);
   }
   std::vector<PetscInt> dnnz(num_owned_), onnz(num_owned_);
   for (int i = 0; i < num_owned_; ++i) {

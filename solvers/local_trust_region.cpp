@@ -172,6 +172,7 @@ PetscErrorCode LocalTrustRegion::accept(Vec s) {
 PetscErrorCode LocalTrustRegion::accepted() {
   PetscFunctionBeginUser;
   ++counters_.accepted;
+  PetscCall(f_.accepted(x_));
   PetscCall(assemble_derivatives());
   // The trial value was finite, so the same point evaluated with its gradient must be too.
   PetscCheck(finite_, PetscObjectComm((PetscObject)x_), PETSC_ERR_FP,
@@ -207,6 +208,16 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
       PetscCall(quadratic_model(H_, g_, s_, &m));
       model_decrease = -m;
     }
+  }
+  // An objective with inadmissible regions (contact) caps the step: x + s stays admissible.
+  PetscReal alpha = 1.0;
+  PetscCall(f_.max_step(x_, s_, &alpha));
+  if (alpha < 1.0) {
+    PetscCall(VecScale(s_, alpha));
+    it->step_norm *= alpha;
+    PetscReal m;
+    PetscCall(quadratic_model(H_, g_, s_, &m));
+    model_decrease = -m;
   }
   PetscReal ft = PETSC_INFINITY;
   it->rho = -PETSC_INFINITY;

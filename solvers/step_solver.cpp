@@ -12,15 +12,15 @@ namespace mlshell {
 namespace {
 
 PetscErrorCode objective_and_gradient(Tao, Vec u, PetscReal* f, Vec g, void* ctx) {
-  return static_cast<LevelProblem*>(ctx)->objective(u, f, g);
+  return static_cast<Objective*>(ctx)->objective(u, f, g);
 }
 
 PetscErrorCode objective_only(Tao, Vec u, PetscReal* f, void* ctx) {
-  return static_cast<LevelProblem*>(ctx)->objective(u, f, nullptr);
+  return static_cast<Objective*>(ctx)->objective(u, f, nullptr);
 }
 
 PetscErrorCode hessian(Tao, Vec u, Mat H, Mat, void* ctx) {
-  return static_cast<LevelProblem*>(ctx)->hessian(u, H);
+  return static_cast<Objective*>(ctx)->hessian(u, H);
 }
 
 /// SNES residual F(u) = ∇f(u); a trial point outside the material's domain (f = +inf) is a
@@ -28,13 +28,13 @@ PetscErrorCode hessian(Tao, Vec u, Mat H, Mat, void* ctx) {
 PetscErrorCode gradient_residual(SNES snes, Vec u, Vec g, void* ctx) {
   PetscReal f;
   PetscFunctionBeginUser;
-  PetscCall(static_cast<LevelProblem*>(ctx)->objective(u, &f, g));
+  PetscCall(static_cast<Objective*>(ctx)->objective(u, &f, g));
   if (f >= PETSC_INFINITY) PetscCall(SNESSetFunctionDomainError(snes));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode hessian_jacobian(SNES, Vec u, Mat H, Mat, void* ctx) {
-  return static_cast<LevelProblem*>(ctx)->hessian(u, H);
+  return static_cast<Objective*>(ctx)->hessian(u, H);
 }
 
 /// Sets each option `prefix + name` to its value unless the user already gave it (the command
@@ -76,6 +76,13 @@ bool uses_snes() {
   return k == "snes";
 }
 
+bool hessian_projection_option(const std::string& solver_type) {
+  PetscBool on = solver_type == "pnewton" ? PETSC_TRUE : PETSC_FALSE;
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_hessian_psd", &on, nullptr));
+  return on;
+}
+
 std::string step_solver_type() {
   if (uses_snes()) return "snes";
   char type[256] = "rmtr";
@@ -96,9 +103,9 @@ void options_read(PetscErrorCode error, const char* what) {
 
 }  // namespace
 
-StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : problem_(problem) {
-  MPI_Comm comm = problem.layout().comm();
-  PetscCallAbort(comm, problem.create_matrix(&H_));
+StepSolver::StepSolver(Objective& problem, MultilevelObjective* levels) : problem_(problem) {
+  PetscCallAbort(PETSC_COMM_WORLD, problem.create_hessian(&H_));
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(H_));
   if (uses_snes()) {
     PetscCallAbort(comm, default_options("-", {{"snes_type", "newtonls"},
                                                {"snes_atol", "1e-7"},
@@ -127,6 +134,7 @@ StepSolver::StepSolver(LevelProblem& problem, MultilevelObjective* levels) : pro
                                                  {"rmtr_smoother_qp", "dogleg"}}));
   PetscCallAbort(comm, register_trust_region_tao_types());
   PetscCallAbort(comm, register_newton_baseline_tao_types());
+  PetscCallAbort(comm, register_projected_newton_tao_type());
   PetscCallAbort(comm, TaoCreate(comm, &tao_));
   PetscCallAbort(comm,
                  TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &problem_));
@@ -198,7 +206,7 @@ PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   if (snes_) PetscFunctionReturn(solve_snes(u, report));
   // |g| < max(gatol, force_rtol |f_ext|): the absolute (7.1) and one relative to the forces.
   PetscReal force, gatol, grtol, gttol;
-  PetscCall(problem_.external_force_norm(u, &force));
+  PetscCall(problem_.force_scale(u, &force));
   PetscCall(TaoGetTolerances(tao_, &gatol, &grtol, &gttol));
   report.gradient_tolerance = std::max(gatol_, force_rtol_ * force);
   report.force_scale = force;

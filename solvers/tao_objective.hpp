@@ -11,13 +11,16 @@ namespace mlshell {
 
 class TaoObjective final : public Objective {
  public:
-  /// `error_source` (may be null) is the objective behind the Tao's callbacks, asked for the
-  /// rounding error of the last value.
-  explicit TaoObjective(Tao tao, const Objective* error_source = nullptr)
-      : tao_(tao), error_source_(error_source) {}
+  /// `source` (may be null) is the objective behind the Tao's callbacks, asked for the
+  /// rounding error of the last value, for step limits and told of accepted iterates.
+  explicit TaoObjective(Tao tao, Objective* source = nullptr) : tao_(tao), source_(source) {}
   PetscReal evaluation_error() const override {
-    return error_source_ ? error_source_->evaluation_error() : 0.0;
+    return source_ ? source_->evaluation_error() : 0.0;
   }
+  PetscErrorCode max_step(Vec x, Vec d, PetscReal* alpha) override {
+    return source_ ? source_->max_step(x, d, alpha) : Objective::max_step(x, d, alpha);
+  }
+  PetscErrorCode accepted(Vec x) override { return source_ ? source_->accepted(x) : 0; }
   PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
     return g ? TaoComputeObjectiveAndGradient(tao_, x, f, g) : TaoComputeObjective(tao_, x, f);
   }
@@ -28,7 +31,7 @@ class TaoObjective final : public Objective {
 
  private:
   Tao tao_;
-  const Objective* error_source_;
+  Objective* source_;
 };
 
 }  // namespace mlshell

@@ -12,7 +12,11 @@ PetscErrorCode register_rmtr_tao_type();
 /// Whether the last RMTR solve ended at the limiting accuracy.
 bool rmtr_reached_limiting_accuracy(Tao tao);
 /// The objective behind the finest level's callbacks (for its rounding-error estimate).
-PetscErrorCode rmtr_set_error_source(Tao tao, const Objective* source);
+PetscErrorCode rmtr_set_error_source(Tao tao, Objective* source);
+/// tao_projected_newton.cpp: the "pnewton" type's objective (step limits, rounding errors,
+/// accepted iterates) and whether its last solve ended at the limiting accuracy.
+PetscErrorCode projected_newton_set_source(Tao tao, Objective* source);
+bool projected_newton_reached_limiting_accuracy(Tao tao);
 
 /// Raises PETSC_ERR_ARG_WRONG unless `tao` is of the given type (for type-specific accessors).
 inline PetscErrorCode require_tao_type(Tao tao, const char* type) {

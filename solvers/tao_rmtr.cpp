@@ -63,7 +63,6 @@ struct Level {
   std::unique_ptr<LocalTrustRegion> tr;
   Vec x0 = nullptr, restricted = nullptr;     // l < L: x₀^l and R ∇h^{l+1}
   Vec correction = nullptr, trial = nullptr;  // l > 0: prolongated correction, x + s
-  Vec inverse_row_sums = nullptr;             // l < L, projection by restriction
   Vec scratch = nullptr;                      // l < L: x − x₀
   long objectives = 0;                        // coarse-correction trial points
   RmtrLevelStatistics stats;
@@ -76,7 +75,7 @@ struct RmtrContext {
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
-  const Objective* error_source = nullptr;
+  Objective* error_source = nullptr;
   PetscBool monitor = PETSC_FALSE, check_consistency = PETSC_FALSE;
   TrustRegionParameters params;
   std::unique_ptr<TaoObjective> finest;
@@ -96,7 +95,6 @@ void destroy_levels(RmtrContext& c) {
     VecDestroy(&lv.restricted);
     VecDestroy(&lv.correction);
     VecDestroy(&lv.trial);
-    VecDestroy(&lv.inverse_row_sums);
     VecDestroy(&lv.scratch);
   }
   c.levels.clear();
@@ -139,15 +137,6 @@ PetscErrorCode setup(Tao tao) {
       lv.model = std::make_unique<CoarseLevelModel>(c->hierarchy->level_objective(h));
       lv.objective = lv.model.get();
       like = lv.x0;
-      if (c->projection == kRestriction) {  // diag(R 1)⁻¹
-        Vec ones;
-        PetscCall(MatCreateVecs(c->hierarchy->restriction(h), &ones, nullptr));
-        PetscCall(VecSet(ones, 1.0));
-        PetscCall(VecDuplicate(lv.x0, &lv.inverse_row_sums));
-        PetscCall(MatMult(c->hierarchy->restriction(h), ones, lv.inverse_row_sums));
-        PetscCall(VecReciprocal(lv.inverse_row_sums));
-        PetscCall(VecDestroy(&ones));
-      }
     } else {
       lv.H = tao->hessian;
       lv.objective = c->finest.get();
@@ -208,23 +197,18 @@ PetscErrorCode smooth(Tao tao, RmtrContext& c, int l, int steps, PetscReal fine_
   PetscFunctionReturn(0);
 }
 
+/// The transfers between RMTR levels l − 1 and l.
+const LevelTransfer& transfer(const RmtrContext& c, int l) {
+  return c.hierarchy->transfer(c.offset + l - 1);
+}
+
 /// x₀^{l−1} = P x^l (eq. 4.6).
 PetscErrorCode project(RmtrContext& c, int l, Vec fine, Vec coarse) {
-  const int h = c.offset + l - 1;
-  Level& lc = c.levels[l - 1];
-  PetscFunctionBeginUser;
-  switch (c.projection) {
-    case kReverse:
-      PetscCall(MatMult(c.hierarchy->projection(h), fine, coarse));
-      break;
-    case kLeastSquares:
-      PetscCall(c.hierarchy->least_squares_projection(h, fine, coarse));
-      break;
-    default:
-      PetscCall(MatMult(c.hierarchy->restriction(h), fine, coarse));
-      PetscCall(VecPointwiseMult(coarse, coarse, lc.inverse_row_sums));
-  }
-  PetscFunctionReturn(0);
+  using P = LevelTransfer::Projection;
+  const P kind = c.projection == kReverse        ? P::kNatural
+                 : c.projection == kLeastSquares ? P::kLeastSquares
+                                                 : P::kScaledRestriction;
+  return transfer(c, l).project(fine, coarse, kind);
 }
 
 /// One V-cycle from level l down (Alg. 4.2). `fine_radius` is Δ^{l+1} (∞ on the finest level),
@@ -241,7 +225,7 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
   // Coarse-level correction.
   Level& lc = c.levels[l - 1];
   PetscCall(project(c, l, lv.tr->solution(), lc.x0));
-  PetscCall(MatMult(c.hierarchy->restriction(c.offset + l - 1), lv.tr->gradient(), lc.restricted));
+  PetscCall(transfer(c, l).restrict_gradient(lc.x0, lv.tr->gradient(), lc.restricted));
   PetscReal rg, f0;
   PetscCall(VecNorm(lc.restricted, NORM_2, &rg));
   bool attempted = false;
@@ -258,7 +242,7 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       PetscReal xnorm, misfit;
       PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
       if (xnorm > 0.0) {
-        PetscCall(MatMult(c.hierarchy->prolongation(c.offset + l - 1), lc.x0, lv.trial));
+        PetscCall(transfer(c, l).prolong(lc.x0, lv.trial));
         PetscCall(VecAXPY(lv.trial, -1.0, lv.tr->solution()));
         PetscCall(VecNorm(lv.trial, NORM_2, &misfit));
         c.stats.max_projection_misfit =
@@ -273,8 +257,8 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
     const PetscReal coarse_reduction = f0 - lc.tr->value();
     PetscReal rho = -PETSC_INFINITY, step_norm = 0.0;
     if (coarse_reduction > 0.0) {
-      PetscCall(VecWAXPY(lc.scratch, -1.0, lc.x0, lc.tr->solution()));  // coarse correction
-      PetscCall(MatMult(c.hierarchy->prolongation(c.offset + l - 1), lc.scratch, lv.correction));
+      // s = P(x^{l−1}) − P(x₀^{l−1}) (eq. 4.10)
+      PetscCall(transfer(c, l).prolong_correction(lc.x0, lc.tr->solution(), lv.correction));
       PetscCall(lv.tr->level_norm(lv.correction, &step_norm));
       c.stats.max_correction_ratio =
           std::max<double>(c.stats.max_correction_ratio, step_norm / *delta);
@@ -308,6 +292,9 @@ PetscErrorCode collect_statistics(RmtrContext& c) {
   const int L = finest(c);
   c.stats.assembly_work_units = c.stats.qp_work_units = 0.0;
   c.stats.levels.resize(c.levels.size());
+  // W^l / W^L (eq. 7.3) as the product of the transfers' relative costs, finest first.
+  std::vector<double> weight(L + 1, 1.0);
+  for (int l = L - 1; l >= 0; --l) weight[l] = weight[l + 1] * transfer(c, l + 1).relative_cost();
   for (int l = 0; l <= L; ++l) {
     Level& lv = c.levels[l];
     RmtrLevelStatistics& s = c.stats.levels[l];
@@ -318,9 +305,8 @@ PetscErrorCode collect_statistics(RmtrContext& c) {
     s.objectives = t.objectives + lv.objectives;
     s.coarse_accepted = lv.stats.coarse_accepted;
     s.coarse_rejected = lv.stats.coarse_rejected;
-    const double weight = std::ldexp(1.0, -2 * (L - l));  // W^l / W^L, eq. (7.3)
-    c.stats.assembly_work_units += weight * s.assemblies;
-    c.stats.qp_work_units += weight * s.qp_solves;
+    c.stats.assembly_work_units += weight[l] * s.assemblies;
+    c.stats.qp_work_units += weight[l] * s.qp_solves;
   }
   PetscFunctionReturn(0);
 }
@@ -554,7 +540,7 @@ bool rmtr_reached_limiting_accuracy(Tao tao) {
   return static_cast<RmtrContext*>(tao->data)->limiting;
 }
 
-PetscErrorCode rmtr_set_error_source(Tao tao, const Objective* source) {
+PetscErrorCode rmtr_set_error_source(Tao tao, Objective* source) {
   PetscFunctionBeginUser;
   PetscCall(require_tao_type(tao, "rmtr"));
   auto* c = static_cast<RmtrContext*>(tao->data);

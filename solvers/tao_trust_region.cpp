@@ -37,7 +37,7 @@ struct TrContext {
   TrustRegionParameters params;
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
-  const Objective* error_source = nullptr;
+  Objective* error_source = nullptr;
   std::unique_ptr<TaoObjective> objective;
   std::unique_ptr<LocalTrustRegion> tr;
   TrustRegionStatistics stats;
@@ -193,19 +193,21 @@ std::string trust_region_converged_reason(Tao tao) {
   bool limiting = false;
   if (t == "tr") limiting = static_cast<TrContext*>(tao->data)->limiting;
   if (t == "rmtr") limiting = rmtr_reached_limiting_accuracy(tao);
+  if (t == "pnewton") limiting = projected_newton_reached_limiting_accuracy(tao);
   if (limiting) return "CONVERGED_LIMITING_ACCURACY";
   TaoConvergedReason reason;
   TaoGetConvergedReason(tao, &reason);
   return TaoConvergedReasons[reason];
 }
 
-PetscErrorCode trust_region_set_error_source(Tao tao, const Objective* source) {
+PetscErrorCode trust_region_set_error_source(Tao tao, Objective* source) {
   PetscFunctionBeginUser;
   TaoType type;
   PetscCall(TaoGetType(tao, &type));
   const std::string t = type ? type : "";
   if (t == "tr") static_cast<TrContext*>(tao->data)->error_source = source;
   if (t == "rmtr") PetscCall(rmtr_set_error_source(tao, source));
+  if (t == "pnewton") PetscCall(projected_newton_set_source(tao, source));
   PetscFunctionReturn(0);
 }
 

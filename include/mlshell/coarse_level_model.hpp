@@ -23,6 +23,11 @@ class CoarseLevelModel final : public Objective {
   PetscErrorCode hessian(Vec x, Mat H) override { return level_.hessian(x, H); }
   /// The level's error plus that of ⟨δg, x − x₀⟩ at the last point, 8 ε ‖δg‖ ‖x − x₀‖.
   PetscReal evaluation_error() const override;
+  /// The linear term is smooth: the level's own step limit and acceptance hooks.
+  PetscErrorCode max_step(Vec x, Vec d, PetscReal* alpha) override {
+    return level_.max_step(x, d, alpha);
+  }
+  PetscErrorCode accepted(Vec x) override { return level_.accepted(x); }
 
  private:
   Objective& level_;

@@ -1,7 +1,10 @@
 // Builds the energy terms of exactly the effects a scene lists, on one discretization.
 #pragma once
 
+#include <Eigen/Core>
+#include <functional>
 #include <memory>
+#include <optional>
 
 #include "mlshell/level_problem.hpp"
 #include "mlshell/scene.hpp"
@@ -30,7 +33,12 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
 struct PenaltyScale {
   double membrane_stiffness = 0.0, length = 0.0;
   static PenaltyScale of(const MaterialSpec& material, const SubdivisionDiscretization& disc);
+  /// Yτ of any material model.
+  static double membrane_stiffness_of(const MaterialSpec& material);
 };
+
+/// d(t) of a Dirichlet condition's or clamp's motion (zero without one).
+std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motion>& motion);
 
 /// The membrane stiffness of the paper's denim in its stiffer (weft) direction, k3·τ =
 /// 9.03 MPa × 0.66 mm: the reference that gives its scenes β = h^-σ.

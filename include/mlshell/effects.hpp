@@ -49,13 +49,19 @@ class ShellElasticTerm final : public EnergyTerm {
 /// Its Hessian, the mass matrix over dt², is assembled once and added by add_constant_hessian.
 class InertiaTerm final : public EnergyTerm {
  public:
+  /// `name`: "inertia", or "proximal" for the proximal term of quasistatics (dt = h).
   InertiaTerm(const SubdivisionDiscretization& disc, const ParallelLayout& layout,
-              double area_density, double dt);
+              double area_density, double dt, std::string name = "inertia");
   ~InertiaTerm() override;
   PetscErrorCode add_constant_hessian(Mat hess) const override;
   /// Sets û from local predictor values (3 per local point).
   void set_predictor(std::vector<double> local_predictor) {
     predictor_ = std::move(local_predictor);
+  }
+  /// Takes the step's predictor (StepStart::predictor, if given).
+  void begin_step(const StepStart& start) override {
+    EnergyTerm::begin_step(start);
+    if (start.predictor) predictor_ = *start.predictor;
   }
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;

@@ -9,6 +9,7 @@
 
 #include <petscmat.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +25,12 @@ namespace mlshell {
 /// rounding error of the total is about ε times magnitude() (Objective::evaluation_error).
 class CompensatedSum {
  public:
+  /// Adds x whose rounding error is that of pieces of total size `magnitude` (≥ |x| when the
+  /// computation of x cancels, e.g. a strain energy near its rest state).
+  void add_with_magnitude(double x, double magnitude) {
+    add(x, 0.0);
+    magnitude_ += magnitude;
+  }
   void add(double x, double error_weight = 1.0) {
     const double t = sum_ + x;
     comp_ += std::abs(sum_) >= std::abs(x) ? (sum_ - t) + x : (x - t) + sum_;
@@ -37,15 +44,57 @@ class CompensatedSum {
   double sum_ = 0.0, comp_ = 0.0, magnitude_ = 0.0;
 };
 
+/// What every term learns when a time (or load) step begins: the time of the state being solved
+/// for and, for the terms that need it, the step's predictor.
+struct StepStart {
+  double time = 0.0;
+  /// Local values (3 per local point) of the inertia predictor û = u_n + dt v_n (implicit Euler)
+  /// or of the last state xᵗ (the proximal term of quasistatics); may be null.
+  const std::vector<double>* predictor = nullptr;
+};
+
 class EnergyTerm {
  public:
   explicit EnergyTerm(std::string name);
   virtual ~EnergyTerm() = default;
   const std::string& name() const { return name_; }
   PetscLogEvent log_event() const { return event_; }
+  /// Index of the scene's `effects:` entry the term was built for; -1 for the terms every
+  /// scene has (elastic) or its integrator adds (proximal).
+  int effect_index() const { return effect_index_; }
+  void set_effect_index(int index) { effect_index_ = index; }
 
   /// Time of the state being solved for (moves boundary conditions, ramps loads).
   virtual void set_time(double time) { time_ = time; }
+
+  // Hooks of the solve (DESIGN.md, "EnergyTerm hooks"). The defaults are those of a smooth term
+  // whose Hessian lives on the element stencils.
+
+  /// A step begins: moves the term to `start.time` (set_time) and takes the per-step data it
+  /// needs (the inertia term its predictor; later, lagged friction bases).
+  virtual void begin_step(const StepStart& start) { set_time(start.time); }
+  /// Whether max_step can return less than 1 (then solvers ask it before every trial point).
+  virtual bool limits_steps() const { return false; }
+  /// The largest α ∈ (0, 1] such that u + α du stays admissible for this term (a collision-free
+  /// step for contact, by continuous collision detection); local arrays as in add().
+  virtual double max_step(const std::vector<double>& u, const std::vector<double>& du) const {
+    return 1.0;
+  }
+  /// The solver accepted the iterate u (local array): adaptive barrier stiffness, friction
+  /// lagging.
+  virtual void after_accept(const std::vector<double>& u) {}
+  /// Point pairs (natural indices) that the term's Hessian couples beyond the element stencils
+  /// (contact pairs); the level's Hessian is preallocated for them.
+  virtual void extend_sparsity(std::vector<std::array<int, 2>>& pairs) const {}
+  /// Per-element output fields (e.g. a triangle's membrane strain): their names, and their
+  /// values on this rank's elements (ParallelLayout::local_elements() order) at u (local).
+  virtual std::vector<std::string> face_field_names() const { return {}; }
+  virtual void face_field_values(const std::vector<double>& u,
+                                 std::vector<std::vector<double>>& values) const {}
+  /// Projected Newton (paper 2 §4.5, -mlshell_hessian_psd): terms with non-convex element
+  /// energies add each element Hessian projected onto the positive semi-definite cone.
+  void set_hessian_projection(bool on) { project_hessian_ = on; }
+  bool projects_hessian() const { return project_hessian_; }
   /// Adds this rank's part of the energy, gradient (if `grad`) and Hessian (if `hess`).
   virtual PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                              std::vector<double>* grad, Mat hess) const = 0;
@@ -56,10 +105,12 @@ class EnergyTerm {
 
  protected:
   double time_ = 0.0;
+  bool project_hessian_ = false;
 
  private:
   std::string name_;
   PetscLogEvent event_;
+  int effect_index_ = -1;
 };
 
 /// Maps natural node indices to local ones (all must be local on this rank).

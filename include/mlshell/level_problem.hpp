@@ -30,16 +30,32 @@ class LevelProblem final : public Objective {
   const ParallelLayout& layout() const { return layout_; }
 
   void set_time(double time);
+  /// A step begins at `time`: every term's begin_step, with the predictor (a global vector of
+  /// this level, or null) as local values.
+  PetscErrorCode begin_step(double time, Vec predictor);
+  /// min over the terms that limit steps (EnergyTerm::limits_steps) and the ranks; 1 without
+  /// communication when none does.
+  PetscErrorCode max_step(Vec u, Vec du, PetscReal* alpha) override;
+  /// Every term's after_accept.
+  PetscErrorCode accepted(Vec u) override;
   /// f(u) and, if g is not null, ∇f(u). A non-finite energy (a trial point outside the
   /// material's domain) is reported as +inf so that trust-region and line-search methods reject
   /// the step instead of propagating NaN.
   PetscErrorCode objective(Vec u, PetscReal* f, Vec g) override;
+  /// f(u) and ∇f(u) without one of the terms (the proximal term of quasistatics: ∇E).
+  PetscErrorCode objective_without(const EnergyTerm& excluded, Vec u, PetscReal* f, Vec g);
   /// 4 ε Σ_pieces w |e| over every element, sample and node of the last objective(), with w
   /// the material's rounding factor for elastic pieces (1 otherwise).
   PetscReal evaluation_error() const override { return evaluation_error_; }
   /// ∇²f(u), assembled into H (created by create_matrix).
   PetscErrorCode hessian(Vec u, Mat H) override;
-  PetscErrorCode create_matrix(Mat* H) const { return layout_.create_matrix(H); }
+  /// A matrix for the Hessian: the element-stencil pattern plus the pairs the terms add
+  /// (EnergyTerm::extend_sparsity).
+  PetscErrorCode create_matrix(Mat* H) const;
+  PetscErrorCode create_hessian(Mat* H) const override { return create_matrix(H); }
+  PetscErrorCode force_scale(Vec u, PetscReal* scale) override {
+    return external_force_norm(u, scale);
+  }
   /// Global energy of each term at u, in the order of terms().
   PetscErrorCode term_energies(Vec u, std::vector<double>& energies);
   /// ‖f_ext‖₂: the norm of the external forces (gravity and loads, at the current time), the
@@ -53,18 +69,24 @@ class LevelProblem final : public Objective {
   /// Energy of each term, the total f(u) and ‖∇f(u)‖₂ at u (for reports).
   PetscErrorCode report(Vec u, std::vector<double>& energies, PetscReal* total, PetscReal* gnorm);
 
+  /// Every term's per-element output fields at u, in natural face order, on rank 0 (empty on
+  /// the other ranks; faces that are not elements hold 0).
+  PetscErrorCode face_fields(Vec u, int num_faces,
+                             std::vector<std::pair<std::string, std::vector<double>>>& fields);
+
   long objective_evaluations() const { return objective_evaluations_; }
   /// Evaluations whose energy was not finite: trial points outside a material's valid domain.
   long inadmissible_evaluations() const { return inadmissible_evaluations_; }
   long hessian_evaluations() const { return hessian_evaluations_; }
 
  private:
+  PetscErrorCode evaluate(Vec u, PetscReal* f, Vec g, const EnergyTerm* excluded);
   using PerTerm = std::function<double(const EnergyTerm&, const std::vector<double>&)>;
   /// One number per term from this rank's local values, reduced over the ranks with `op`.
   PetscErrorCode reduce_per_term(Vec u, const PerTerm& value, MPI_Op op, std::vector<double>& out);
   const ParallelLayout& layout_;
   std::vector<std::unique_ptr<EnergyTerm>> terms_;
-  std::vector<double> u_local_, g_local_;
+  std::vector<double> u_local_, g_local_, d_local_;
   long objective_evaluations_ = 0, hessian_evaluations_ = 0, inadmissible_evaluations_ = 0;
   PetscReal evaluation_error_ = 0.0;
 };

@@ -5,6 +5,7 @@
 
 #include <petscmat.h>
 
+#include "mlshell/level_transfer.hpp"
 #include "mlshell/objective.hpp"
 
 namespace mlshell {
@@ -17,15 +18,10 @@ class MultilevelObjective {
   virtual Objective& level_objective(int l) = 0;
   virtual PetscErrorCode create_vector(int l, Vec* v) const = 0;
   virtual PetscErrorCode create_hessian(int l, Mat* H) const = 0;
-  /// I_l^{l+1} (coarse corrections to level l+1) and R_{l+1}^l = (I_l^{l+1})ᵀ, for l + 1 <
-  /// num_levels().
-  virtual Mat prolongation(int l) const = 0;
-  virtual Mat restriction(int l) const = 0;
-  /// The projection of level l+1 iterates onto level l by reverse subdivision, Q_{l+1}^l.
-  virtual Mat projection(int l) const = 0;
-  /// The least-squares projection (I_l^{l+1}ᵀ I_l^{l+1})⁻¹ I_l^{l+1}ᵀ of `fine` onto level l.
-  virtual PetscErrorCode least_squares_projection(int l, Vec fine, Vec coarse) const = 0;
-  /// ‖I_{L−1}^L ⋯ I_l^{l+1} x‖₂, the level norm of eq. (4.9).
+  /// The transfers between levels l and l + 1, for l + 1 < num_levels().
+  virtual const LevelTransfer& transfer(int l) const = 0;
+  /// ‖I_{L−1}^L ⋯ I_l^{l+1} x‖₂, the level norm of eq. (4.9) (for nonlinear transfers, the
+  /// prolongations linearised at the current coarse starts).
   virtual PetscErrorCode composite_norm(int l, Vec x, PetscReal* norm) const = 0;
 };
 

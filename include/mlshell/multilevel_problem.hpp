@@ -5,6 +5,7 @@
 // It is what RMTR works on (MultilevelObjective).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -18,6 +19,11 @@ namespace mlshell {
 
 class MultilevelProblem final : public MultilevelObjective {
  public:
+  /// Builds the problem of level l of any hierarchy.
+  using LevelBuilder = std::function<std::unique_ptr<LevelProblem>(int level)>;
+  /// `dt`: the step of the inertia predictor û = u + dt v.
+  MultilevelProblem(const Levels& levels, double dt, const LevelBuilder& build);
+  /// The scene on every subdivision level (build_level_problem).
   MultilevelProblem(const Scene& scene, const LevelHierarchy& levels, const CageFrame& frame);
   ~MultilevelProblem();
   MultilevelProblem(const MultilevelProblem&) = delete;
@@ -25,7 +31,7 @@ class MultilevelProblem final : public MultilevelObjective {
 
   int num_levels() const override { return static_cast<int>(problems_.size()); }
   LevelProblem& level(int l) { return *problems_[l]; }
-  const LevelHierarchy& hierarchy() const { return levels_; }
+  const Levels& hierarchy() const { return levels_; }
   // MultilevelObjective
   Objective& level_objective(int l) override { return *problems_[l]; }
   PetscErrorCode create_vector(int l, Vec* v) const override {
@@ -34,12 +40,7 @@ class MultilevelProblem final : public MultilevelObjective {
   PetscErrorCode create_hessian(int l, Mat* H) const override {
     return problems_[l]->create_matrix(H);
   }
-  Mat prolongation(int l) const override { return levels_.prolongation(l); }
-  Mat restriction(int l) const override { return levels_.restriction(l); }
-  Mat projection(int l) const override { return levels_.projection(l); }
-  PetscErrorCode least_squares_projection(int l, Vec fine, Vec coarse) const override {
-    return levels_.least_squares_projection(l, fine, coarse);
-  }
+  const LevelTransfer& transfer(int l) const override { return levels_.transfer(l); }
   PetscErrorCode composite_norm(int l, Vec x, PetscReal* norm) const override {
     return levels_.composite_norm(l, x, norm);
   }
@@ -54,7 +55,7 @@ class MultilevelProblem final : public MultilevelObjective {
   PetscErrorCode synchronize(double time, Vec u_finest, Vec v_finest);
 
  private:
-  const LevelHierarchy& levels_;
+  const Levels& levels_;
   double dt_;
   std::vector<std::unique_ptr<LevelProblem>> problems_;
   std::vector<Vec> u_, v_;

@@ -10,6 +10,7 @@
 
 #include <petscmat.h>
 
+#include <array>
 #include <vector>
 
 #include "mlshell/discretization.hpp"
@@ -46,9 +47,10 @@ class ParallelLayout {
 
   /// A global vector of displacements (block size 3, PETSc order).
   PetscErrorCode create_vector(Vec* v) const;
-  /// A block-size-3 AIJ matrix preallocated for the element stencils, local-to-global mapping
-  /// set, with the six rigid-body modes as near-nullspace (for algebraic multigrid).
-  PetscErrorCode create_matrix(Mat* A) const;
+  /// A block-size-3 AIJ matrix preallocated for the element stencils and the given extra
+  /// point pairs (natural indices, coupled both ways), local-to-global mapping set, with the six
+  /// rigid-body modes as near-nullspace (for algebraic multigrid).
+  PetscErrorCode create_matrix(Mat* A, const std::vector<std::array<int, 2>>& extra = {}) const;
   /// Reference coordinates of the owned points (block size 3), e.g. for rigid-body modes.
   PetscErrorCode create_coordinates(Vec* x) const;
   /// Global → local (owned + ghost) values.

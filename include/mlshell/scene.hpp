@@ -51,9 +51,32 @@ struct ObjCage {
   std::filesystem::path path;  ///< resolved (absolute or relative to the working directory)
 };
 
+/// `mesh: {obj: path}` or `mesh: {generator: rectangle | cylinder | dome | sphere, ...}`: a
+/// triangle-mesh shell (paper 2) instead of a subdivision cage.
+///   rectangle  size: [w, h], faces: [nx, ny] (structured) or edge_length: l (unstructured
+///              Delaunay), origin: [x, y]
+///   cylinder   radius, length, faces: [around, along]   (axis z, two boundary loops)
+///   dome       radius, opening_angle (rad, polar angle of the rim), rings   (apex on +z)
+///   sphere     radius, subdivisions (icosphere: 20·4^s triangles, closed)
+struct TriangleMeshSpec {
+  enum class Generator { kObj, kRectangle, kCylinder, kDome, kSphere };
+  Generator generator = Generator::kRectangle;
+  std::filesystem::path obj;  ///< kObj: resolved path
+  std::array<double, 2> size{1.0, 1.0};
+  std::array<int, 2> faces{8, 8};
+  std::optional<double> edge_length;  ///< rectangle: unstructured with this target edge length
+  std::array<double, 2> origin{0.0, 0.0};
+  double radius = 1.0, length = 1.0, opening_angle = 1.0;
+  int rings = 8, subdivisions = 3;
+};
+
 struct GeometrySpec {
   std::variant<RectangleCage, LShapeCage, ObjCage> cage = RectangleCage{};
-  int refine = 0;  ///< uniform Catmull–Clark refinements of the cage, 0..8
+  int refine = 0;                        ///< uniform Catmull–Clark refinements of the cage, 0..8
+  std::optional<TriangleMeshSpec> mesh;  ///< a triangle mesh instead of the cage
+  bool triangles() const { return mesh.has_value(); }
+  /// Named sides, corners and point(u, v) exist: a generated cage or triangle rectangle.
+  bool has_frame() const;
 };
 
 // ----------------------------------------------------------------------------------------------
@@ -84,8 +107,18 @@ struct SvkMaterial {
   double poisson_ratio = 0.0;   ///< in (-1, 0.5)
 };
 
+/// Triangle-mesh shells: `{model: neo-hookean | st-venant-kirchhoff, youngs_modulus: E,
+/// poisson_ratio: nu, thickness, volume_density}` — the membrane of paper 2 (neo-Hookean, or
+/// St. Venant–Kirchhoff) plus discrete hinge bending; `volume_density` in kg/m³ (MaterialSpec's
+/// density is then volume_density × thickness).
+struct TriangleMaterial {
+  bool neo_hookean = true;
+  double youngs_modulus = 0.0;  ///< Pa, > 0
+  double poisson_ratio = 0.0;   ///< in (-1, 0.5)
+};
+
 struct MaterialSpec {
-  std::variant<ClydeMaterial, SvkMaterial> model;
+  std::variant<ClydeMaterial, SvkMaterial, TriangleMaterial> model;
   std::string preset;        ///< "denim", "denim-table1" or empty
   double thickness = 0.0;    ///< m, > 0
   double density = 0.0;      ///< area density kg/m², >= 0
@@ -106,10 +139,14 @@ ClydeMaterial denim_preset();
 // Selections: where an effect acts.
 
 /// A boundary curve: all of it, a named side of a generated cage, or the boundary parts in a box.
+/// On triangle meshes also one boundary loop (`boundary(loop k)`) or a named vertex group of the
+/// OBJ file (`group(name)`); a box there selects every vertex inside it.
 struct CurveSelection {
-  enum class Kind { All, Side, Box } kind = Kind::All;
+  enum class Kind { All, Side, Box, Loop, Group } kind = Kind::All;
   std::string side;  ///< Kind::Side: left|right|bottom|top (+ re-entrant for l-shape cages)
   Vec3 box_min{}, box_max{};
+  int loop = 0;       ///< Kind::Loop
+  std::string group;  ///< Kind::Group
 };
 
 /// A single point of the surface.
@@ -183,8 +220,15 @@ struct ClampEffect {
   std::optional<double> rotation_penalty;  ///< default beta * h^2
 };
 
+/// `pressure: {pressure: p, ramp: true}` — work p·(V(x) − V(X)) of the volume V enclosed by a
+/// closed triangle-mesh surface (outward normals: p > 0 inflates).
+struct PressureEffect {
+  double pressure = 0.0;  ///< Pa
+  bool ramp = false;
+};
+
 using Effect = std::variant<InertiaEffect, GravityEffect, SurfaceLoadEffect, LineLoadEffect,
-                            PointLoadEffect, DirichletEffect, ClampEffect>;
+                            PointLoadEffect, DirichletEffect, ClampEffect, PressureEffect>;
 
 /// Name used in YAML, logs, CSV columns and summary.json ("inertia", "gravity", ...).
 std::string effect_name(const Effect& e);
@@ -198,9 +242,18 @@ struct InitialState {
   std::optional<std::filesystem::path> checkpoint;  ///< resolved path
 };
 
+/// `time: {dt, steps, integrator, proximal_step, max_proximal_solves}`.
 struct TimeSpec {
+  enum class Integrator { kImplicitEuler, kQuasistatic };
   double dt = 1.0;  ///< > 0
   int steps = 1;    ///< >= 1
+  /// implicit_euler (paper 1, with the scene's inertia effect) or quasistatic (paper 2 eq. 1:
+  /// each step is a sequence of proximal solves; `dt` is the load step of moving boundary
+  /// conditions and ramps)
+  Integrator integrator = Integrator::kImplicitEuler;
+  double proximal_step = 1.0;  ///< quasistatic: the artificial step h (s) of ½h⁻²‖x − xᵗ‖²_M
+  int max_proximal_solves = 50;  ///< quasistatic: proximal solves per step before giving up
+  bool quasistatic() const { return integrator == Integrator::kQuasistatic; }
 };
 
 struct Probe {

@@ -36,6 +36,7 @@
 #include "mlshell/subdivision/level_hierarchy.hpp"
 #include "mlshell/subdivision/subdivision_discretization.hpp"
 #include "mlshell/subdivision/subdivision_hierarchy.hpp"
+#include "mlshell/time_stepper.hpp"
 
 namespace mlshell {
 
@@ -61,7 +62,8 @@ class Simulation {
   /// Runs the scene (or only evaluates it). Returns the exit status.
   PetscErrorCode run(int* status);
 
-  const SubdivisionDiscretization& discretization() const { return *disc_; }
+  /// The finest level's discretization (SubdivisionDiscretization or TriangleDiscretization).
+  const Discretization& discretization() const { return *disc_; }
   LevelProblem& problem() { return *problem_; }
   Vec displacement() const { return u_; }
   /// Solver iterations summed over the steps run so far.
@@ -86,17 +88,26 @@ class Simulation {
   Scene scene_;
   SimulationOptions options_;
   CageFrame frame_;
-  std::unique_ptr<SubdivisionHierarchy> hierarchy_;
-  std::unique_ptr<LevelHierarchy> levels_;           // all levels for RMTR, else the finest alone
+  std::unique_ptr<SubdivisionHierarchy> hierarchy_;  // subdivision shells only
+  std::unique_ptr<Levels> levels_;                   // all levels for RMTR, else the finest alone
   std::unique_ptr<MultilevelProblem> multilevel_;    // the scene on each of them
-  const SubdivisionDiscretization* disc_ = nullptr;  // the finest level's
+  const Discretization* disc_ = nullptr;             // the finest level's
   const ParallelLayout* layout_ = nullptr;
   LevelProblem* problem_ = nullptr;
   std::unique_ptr<StepSolver> solver_;
+  std::unique_ptr<TimeStepper> stepper_;
   std::unique_ptr<Output> output_;
-  Vec u_ = nullptr, v_ = nullptr, u_prev_ = nullptr;
+  Vec u_ = nullptr, v_ = nullptr;
   int first_step_ = 0;
-  std::vector<SurfacePoint> probes_;
+  /// A probe: displacement Σ w_i u_{nodes[i]} at the reference point X.
+  struct ProbePoint {
+    std::vector<int> nodes;
+    std::vector<double> weights;
+    Point3 reference;
+  };
+  std::vector<ProbePoint> probes_;
+  void setup_subdivision();
+  void setup_triangles();
   double wall_start_ = 0.0;
   long total_iterations_ = 0;
   long total_linear_iterations_ = 0;

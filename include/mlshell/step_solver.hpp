@@ -22,7 +22,8 @@
 
 #include <string>
 
-#include "mlshell/level_problem.hpp"
+#include "mlshell/multilevel_objective.hpp"
+#include "mlshell/objective.hpp"
 #include "mlshell/trust_region.hpp"
 
 namespace mlshell {
@@ -32,6 +33,7 @@ struct SolveReport {
   std::string reason;  ///< TAO's converged reason, e.g. CONVERGED_GATOL
   int iterations = 0;
   int linear_iterations = 0;
+  int solves = 1;  ///< minimisations in the step (quasistatic: proximal solves)
   double energy = 0.0;
   double gradient_norm = 0.0;
   double gradient_tolerance = 0.0;  ///< max(-tao_gatol, -mlshell_force_rtol × ‖f_ext‖)
@@ -43,10 +45,16 @@ struct SolveReport {
 /// (-tao_type if given, else the default "rmtr").
 std::string step_solver_type();
 
+/// -mlshell_hessian_psd: every non-convex element Hessian (membranes, hinges, the shell
+/// material) is projected onto the PSD cone before assembly (projected Newton, paper 2 §4.5).
+/// Default: on for -tao_type pnewton, off otherwise.
+bool hessian_projection_option(const std::string& solver_type);
+
 class StepSolver {
  public:
-  /// Minimises `problem`; `levels` (finest = problem) are given to RMTR if that is the type.
-  explicit StepSolver(LevelProblem& problem, MultilevelObjective* levels = nullptr);
+  /// Minimises `problem` (which must create its Hessian matrix, Objective::create_hessian);
+  /// `levels` (finest = problem) are given to RMTR if that is the type.
+  explicit StepSolver(Objective& problem, MultilevelObjective* levels = nullptr);
   ~StepSolver();
   StepSolver(const StepSolver&) = delete;
   StepSolver& operator=(const StepSolver&) = delete;
@@ -60,7 +68,7 @@ class StepSolver {
  private:
   PetscErrorCode solve_snes(Vec u, SolveReport& report);
 
-  LevelProblem& problem_;
+  Objective& problem_;
   Tao tao_ = nullptr;
   SNES snes_ = nullptr;
   Vec residual_ = nullptr;

@@ -63,14 +63,18 @@ PetscErrorCode rmtr_statistics(Tao tao, RmtrStatistics* stats);
 
 /// Registers the TAO types "dampednewton" and "linearized" (idempotent).
 PetscErrorCode register_newton_baseline_tao_types();
+/// Registers "pnewton", projected Newton with a backtracking line search (paper 2 §4.5;
+/// tao_projected_newton.cpp).
+PetscErrorCode register_projected_newton_tao_type();
 
 /// Why the last solve of `tao` stopped: TAO's reason, or CONVERGED_LIMITING_ACCURACY when a
 /// "tr" or "rmtr" solve ended at the round-off floor (StoppingRule, local_trust_region.hpp).
 std::string trust_region_converged_reason(Tao tao);
 
 /// Tells a "tr" or "rmtr" solver which objective its callbacks evaluate, so that it can ask
-/// for the rounding error of f (no effect on other types). Call before TaoSetUp.
-PetscErrorCode trust_region_set_error_source(Tao tao, const Objective* source);
+/// for the rounding error of f and for step limits (Objective::max_step), and report accepted
+/// iterates (no effect on other types). Call before TaoSetUp.
+PetscErrorCode trust_region_set_error_source(Tao tao, Objective* source);
 
 /// Statistics of the last solve of a Tao of type "tr".
 PetscErrorCode trust_region_statistics(Tao tao, TrustRegionStatistics* stats);

@@ -54,20 +54,23 @@ LevelHierarchy::LevelHierarchy(MPI_Comm comm, const SubdivisionHierarchy& sub, i
     PetscCallAbort(
         comm, create_block_transfer(sub.subdivision(coarsest + l), layout(l + 1), layout(l), &t.S));
     PetscCallAbort(comm, MatTranspose(t.S, MAT_INITIAL_MATRIX, &t.R));
-    PetscCallAbort(comm, MatCreateVecs(t.S, nullptr, &t.fine_work));
     PetscCallAbort(comm, create_block_transfer(sub.reverse_subdivision(coarsest + l), layout(l),
                                                layout(l + 1), &t.Q));
+    // Catmull–Clark refinement quadruples the faces: a coarse evaluation costs a quarter.
+    t.linear = std::make_unique<LinearTransfer>(
+        t.S, t.R, t.Q, 0.25,
+        [this, l](Vec fine, Vec coarse) { return least_squares_projection(l, fine, coarse); });
   }
 }
 
 LevelHierarchy::~LevelHierarchy() {
   for (Transfer& t : transfers_) {
+    t.linear.reset();
     MatDestroy(&t.S);
     MatDestroy(&t.R);
     MatDestroy(&t.Q);
     MatDestroy(&t.StS);
     KSPDestroy(&t.normal);
-    VecDestroy(&t.fine_work);
   }
 }
 
@@ -91,27 +94,6 @@ PetscErrorCode LevelHierarchy::least_squares_projection(int l, Vec fine, Vec coa
   PetscCall(MatMult(t.R, fine, rhs));
   PetscCall(KSPSolve(t.normal, rhs, coarse));
   PetscCall(VecDestroy(&rhs));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode LevelHierarchy::composite_norm(int l, Vec x, PetscReal* norm) const {
-  PetscFunctionBeginUser;
-  Vec current = x;  // on the finest level: ‖x‖ itself
-  for (int k = l; k < finest(); ++k) {
-    PetscCall(MatMult(transfers_[k].S, current, transfers_[k].fine_work));
-    current = transfers_[k].fine_work;
-  }
-  PetscCall(VecNorm(current, NORM_2, norm));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode LevelHierarchy::project_down(Vec fine, const std::vector<Vec>& coarse) const {
-  PetscFunctionBeginUser;
-  Vec from = fine;
-  for (int l = finest() - 1; l >= 0; --l) {
-    PetscCall(MatMult(transfers_[l].Q, from, coarse[l]));
-    from = coarse[l];
-  }
   PetscFunctionReturn(0);
 }
 

@@ -10,6 +10,12 @@ namespace mlshell {
 
 CageFrame CageFrame::from(const GeometrySpec& geometry) {
   CageFrame f;
+  if (geometry.mesh) {
+    const TriangleMeshSpec& m = *geometry.mesh;
+    if (m.generator == TriangleMeshSpec::Generator::kRectangle)
+      f = {true, m.origin[0], m.origin[1], m.size[0], m.size[1], 0.0, 0.0};
+    return f;
+  }
   if (const auto* r = std::get_if<RectangleCage>(&geometry.cage)) {
     f = {true, r->origin[0], r->origin[1], r->size[0], r->size[1], 0.0, 0.0};
   } else if (const auto* l = std::get_if<LShapeCage>(&geometry.cage)) {

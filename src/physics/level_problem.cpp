@@ -1,6 +1,7 @@
 // Sum of a scene's energy terms on distributed vectors.
 #include "mlshell/level_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "mlshell/effects.hpp"
@@ -15,13 +16,96 @@ void LevelProblem::set_time(double time) {
   for (auto& t : terms_) t->set_time(time);
 }
 
+PetscErrorCode LevelProblem::begin_step(double time, Vec predictor) {
+  PetscFunctionBeginUser;
+  StepStart start{time, nullptr};
+  std::vector<double> local;
+  if (predictor) {
+    PetscCall(layout_.to_local(predictor, local));
+    start.predictor = &local;
+  }
+  for (auto& t : terms_) t->begin_step(start);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::max_step(Vec u, Vec du, PetscReal* alpha) {
+  PetscFunctionBeginUser;
+  *alpha = 1.0;
+  if (std::none_of(terms_.begin(), terms_.end(), [](const auto& t) { return t->limits_steps(); }))
+    PetscFunctionReturn(0);
+  PetscCall(layout_.to_local(u, u_local_));
+  PetscCall(layout_.to_local(du, d_local_));
+  double mine = 1.0;
+  for (const auto& t : terms_)
+    if (t->limits_steps()) mine = std::min(mine, t->max_step(u_local_, d_local_));
+  PetscCallMPI(MPI_Allreduce(&mine, alpha, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::accepted(Vec u) {
+  PetscFunctionBeginUser;
+  PetscCall(layout_.to_local(u, u_local_));
+  for (auto& t : terms_) t->after_accept(u_local_);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::create_matrix(Mat* H) const {
+  std::vector<std::array<int, 2>> pairs;
+  for (const auto& t : terms_) t->extend_sparsity(pairs);
+  return layout_.create_matrix(H, pairs);
+}
+
+PetscErrorCode LevelProblem::face_fields(
+    Vec u, int num_faces, std::vector<std::pair<std::string, std::vector<double>>>& fields) {
+  PetscFunctionBeginUser;
+  fields.clear();
+  PetscCall(layout_.to_local(u, u_local_));
+  const auto& mine = layout_.local_elements();
+  int size;
+  PetscCallMPI(MPI_Comm_size(layout_.comm(), &size));
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(size), displs(size, 0);
+  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, layout_.comm()));
+  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  const int total = layout_.rank() == 0 ? displs[size - 1] + counts[size - 1] : 0;
+  std::vector<int> faces(total);
+  PetscCallMPI(MPI_Gatherv(mine.data(), count, MPI_INT, faces.data(), counts.data(), displs.data(),
+                           MPI_INT, 0, layout_.comm()));
+  for (const auto& t : terms_) {
+    const auto names = t->face_field_names();
+    if (names.empty()) continue;
+    std::vector<std::vector<double>> values;
+    t->face_field_values(u_local_, values);
+    for (size_t k = 0; k < names.size(); ++k) {
+      std::vector<double> gathered(total);
+      PetscCallMPI(MPI_Gatherv(values[k].data(), count, MPI_DOUBLE, gathered.data(), counts.data(),
+                               displs.data(), MPI_DOUBLE, 0, layout_.comm()));
+      if (layout_.rank() != 0) continue;
+      std::vector<double> natural(num_faces, 0.0);
+      for (int i = 0; i < total; ++i) natural[faces[i]] = gathered[i];
+      fields.emplace_back(names[k], std::move(natural));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LevelProblem::objective(Vec u, PetscReal* f, Vec g) {
+  return evaluate(u, f, g, nullptr);
+}
+
+PetscErrorCode LevelProblem::objective_without(const EnergyTerm& excluded, Vec u, PetscReal* f,
+                                               Vec g) {
+  return evaluate(u, f, g, &excluded);
+}
+
+PetscErrorCode LevelProblem::evaluate(Vec u, PetscReal* f, Vec g, const EnergyTerm* excluded) {
   PetscFunctionBeginUser;
   ++objective_evaluations_;
   PetscCall(layout_.to_local(u, u_local_));
   if (g) g_local_.assign(u_local_.size(), 0.0);
   CompensatedSum local;
   for (const auto& t : terms_) {
+    if (t.get() == excluded) continue;
     PetscCall(PetscLogEventBegin(t->log_event(), 0, 0, 0, 0));
     PetscCall(t->add(u_local_, local, g ? &g_local_ : nullptr, nullptr));
     PetscCall(PetscLogEventEnd(t->log_event(), 0, 0, 0, 0));

@@ -108,6 +108,14 @@ Effect read_dirichlet(const Field& params, const GeometrySpec& geometry) {
   return effect;
 }
 
+Effect read_pressure(const Field& params, const GeometrySpec& geometry) {
+  params.expect_keys({"pressure", "ramp"});
+  params.check(geometry.triangles(), "pressure acts on closed triangle-mesh surfaces",
+               "geometry: {mesh: {generator: sphere, ...}} or a closed OBJ mesh");
+  return PressureEffect{.pressure = params.require("pressure", "a number in Pa").number(),
+                        .ramp = optional_ramp(params)};
+}
+
 Effect read_clamp(const Field& params, const GeometrySpec& geometry) {
   params.expect_keys({"where", "motion", "sigma", "penalty", "rotation_penalty"});
   ClampEffect effect;
@@ -134,6 +142,7 @@ constexpr std::array<EffectReader, kEffectNames.size()> kEffectReaders{{
     {read_point_load, false},
     {read_dirichlet, false},
     {read_clamp, false},
+    {read_pressure, false},
 }};
 
 std::string known_effects() {

@@ -1,5 +1,6 @@
 // The `geometry:` section: the cage (a generated rectangle or L-shape, or an OBJ file) and the
 // number of uniform Catmull–Clark refinements.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -93,13 +94,85 @@ decltype(GeometrySpec::cage) read_cage(const Field& cage, const std::filesystem:
   generator->fail("unknown generator", "rectangle or l-shape");
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
+TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene_dir) {
+  TriangleMeshSpec spec;
+  using G = TriangleMeshSpec::Generator;
+  if (const auto obj = mesh.find("obj")) {
+    mesh.expect_keys({"obj"});
+    spec.generator = G::kObj;
+    spec.obj = read_existing_path(*obj, scene_dir);
+    return spec;
+  }
+  const std::optional<Field> generator = mesh.find("generator");
+  if (!generator)
+    mesh.fail("a mesh needs `generator` or `obj`",
+              "{generator: rectangle | cylinder | dome | sphere, ...} or {obj: path/to/mesh.obj}");
+  const std::string kind = generator->string();
+  const auto positive = [&](const char* key, double& value) {
+    if (const auto f = mesh.find(key)) value = f->positive_number();
+  };
+  if (kind == "rectangle") {
+    mesh.expect_keys({"generator", "size", "faces", "edge_length", "origin"});
+    spec.generator = G::kRectangle;
+    if (const auto size = mesh.find("size")) spec.size = read_size(*size);
+    if (const auto faces = mesh.find("faces")) spec.faces = read_faces(*faces);
+    if (const auto origin = mesh.find("origin")) spec.origin = origin->numbers<2>("[x, y] in m");
+    if (const auto l = mesh.find("edge_length")) {
+      l->check(!mesh.find("faces"), "give either faces (structured) or edge_length (unstructured)");
+      spec.edge_length = l->positive_number();
+      l->check(*spec.edge_length <= 0.5 * std::min(spec.size[0], spec.size[1]),
+               "must be at most half the rectangle's shorter side");
+      l->check(spec.size[0] * spec.size[1] / (*spec.edge_length * *spec.edge_length) <= 4e6,
+               "gives more than ~10 million triangles");
+    }
+  } else if (kind == "cylinder") {
+    mesh.expect_keys({"generator", "radius", "length", "faces"});
+    spec.generator = G::kCylinder;
+    spec.faces = {32, 16};
+    positive("radius", spec.radius);
+    positive("length", spec.length);
+    if (const auto faces = mesh.find("faces")) spec.faces = read_faces(*faces);
+    if (const auto faces = mesh.find("faces"))
+      faces->check(spec.faces[0] >= 3, "needs at least 3 faces around", "[around >= 3, along]");
+  } else if (kind == "dome") {
+    mesh.expect_keys({"generator", "radius", "opening_angle", "rings"});
+    spec.generator = G::kDome;
+    positive("radius", spec.radius);
+    if (const auto a = mesh.find("opening_angle")) {
+      spec.opening_angle = a->positive_number();
+      a->check(spec.opening_angle < kPi, "must be in (0, pi) (radians)");
+    }
+    if (const auto r = mesh.find("rings")) spec.rings = r->integer_in(1, 2000);
+  } else if (kind == "sphere") {
+    mesh.expect_keys({"generator", "radius", "subdivisions"});
+    spec.generator = G::kSphere;
+    positive("radius", spec.radius);
+    if (const auto s = mesh.find("subdivisions")) spec.subdivisions = s->integer_in(0, 8);
+  } else {
+    generator->fail("unknown generator", "rectangle, cylinder, dome or sphere");
+  }
+  return spec;
+}
+
 }  // namespace
 
 GeometrySpec read_geometry(const Field& geometry, const std::filesystem::path& scene_dir) {
-  geometry.expect_keys({"cage", "refine"});
+  geometry.expect_keys({"cage", "refine", "mesh"});
   GeometrySpec spec;
-  spec.cage =
-      read_cage(geometry.require("cage", "{generator: rectangle, ...} or {obj: path}"), scene_dir);
+  if (const auto mesh = geometry.find("mesh")) {
+    mesh->check(!geometry.find("cage"),
+                "a geometry is either a subdivision cage or a triangle mesh, not both");
+    if (const auto refine = geometry.find("refine"))
+      refine->fail("refine applies to subdivision cages, not triangle meshes");
+    spec.mesh = read_mesh(*mesh, scene_dir);
+    return spec;
+  }
+  spec.cage = read_cage(geometry.require("cage",
+                                         "{generator: rectangle, ...} or {obj: path}, "
+                                         "or a triangle mesh: {mesh: {...}}"),
+                        scene_dir);
   if (const auto refine = geometry.find("refine")) spec.refine = refine->integer_in(0, 8);
   return spec;
 }

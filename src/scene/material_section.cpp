@@ -107,9 +107,24 @@ SvkMaterial read_svk(const Field& material) {
 }  // namespace
 
 MaterialSpec read_material(const Field& material) {
-  const Field model = material.require("model", "clyde-orthotropic or isotropic-svk");
+  const Field model = material.require(
+      "model",
+      "clyde-orthotropic or isotropic-svk (cages), neo-hookean or st-venant-kirchhoff "
+      "(triangle meshes)");
   const std::string model_name = model.string();
   MaterialSpec spec;
+  if (model_name == "neo-hookean" || model_name == "st-venant-kirchhoff") {
+    material.expect_keys(
+        {"model", "youngs_modulus", "poisson_ratio", "thickness", "volume_density"});
+    const SvkMaterial iso = read_svk(material);
+    spec.model =
+        TriangleMaterial{model_name == "neo-hookean", iso.youngs_modulus, iso.poisson_ratio};
+    spec.thickness = material.require("thickness", "a number > 0, in m").positive_number();
+    const Field rho = material.require("volume_density", "a number >= 0, in kg/m³");
+    rho.check(rho.number() >= 0.0, "must be >= 0");
+    spec.density = rho.number() * spec.thickness;
+    return spec;
+  }
   if (model_name == "clyde-orthotropic") {
     material.expect_keys({"model", "preset", "thickness", "density", "warp", "thickness_points",
                           "k", "mu", "alpha", "coupling_limit"});
@@ -119,7 +134,9 @@ MaterialSpec read_material(const Field& material) {
         {"model", "youngs_modulus", "poisson_ratio", "thickness", "density", "thickness_points"});
     spec.model = read_svk(material);
   } else {
-    model.fail("unknown material model", "clyde-orthotropic or isotropic-svk");
+    model.fail("unknown material model",
+               "clyde-orthotropic or isotropic-svk (cages), neo-hookean or st-venant-kirchhoff "
+               "(triangle meshes)");
   }
 
   const bool denim = spec.preset.rfind("denim", 0) == 0;

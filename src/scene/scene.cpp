@@ -99,10 +99,23 @@ InitialState read_initial_state(const Field& field, const fs::path& scene_dir) {
 }
 
 TimeSpec read_time(const Field& field) {
-  field.expect_keys({"dt", "steps"});
-  return TimeSpec{
-      .dt = field.require("dt", "a number > 0, in s").positive_number(),
-      .steps = field.require("steps", "an integer in 1..1000000").integer_in(1, 1000000)};
+  field.expect_keys({"dt", "steps", "integrator", "proximal_step", "max_proximal_solves"});
+  TimeSpec time{.dt = field.require("dt", "a number > 0, in s").positive_number(),
+                .steps = field.require("steps", "an integer in 1..1000000").integer_in(1, 1000000)};
+  if (const auto integrator = field.find("integrator")) {
+    const std::string kind = integrator->string();
+    integrator->check(kind == "implicit_euler" || kind == "quasistatic", "unknown integrator",
+                      "implicit_euler or quasistatic");
+    if (kind == "quasistatic") time.integrator = TimeSpec::Integrator::kQuasistatic;
+  }
+  for (const char* key : {"proximal_step", "max_proximal_solves"})
+    if (const auto f = field.find(key))
+      f->check(time.quasistatic(), "only a quasistatic integrator has this parameter",
+               "integrator: quasistatic, or no " + std::string(key));
+  if (const auto h = field.find("proximal_step")) time.proximal_step = h->positive_number();
+  if (const auto n = field.find("max_proximal_solves"))
+    time.max_proximal_solves = n->integer_in(1, 100000);
+  return time;
 }
 
 bool is_probe_name(const std::string& name) {
@@ -178,13 +191,28 @@ Scene parse_scene(const std::filesystem::path& file) {
   scene.name = name ? name->string() : file.stem().string();
   // Geometry first, whatever the order in the file: selections are checked against the cage.
   scene.geometry = read_geometry(root.require("geometry", "{cage: {...}, refine: n}"), scene_dir);
-  scene.material = read_material(root.require("material", "{model: ..., thickness, density}"));
+  const Field material = root.require("material", "{model: ..., thickness, density}");
+  scene.material = read_material(material);
+  const bool triangle_material = std::holds_alternative<TriangleMaterial>(scene.material.model);
+  if (triangle_material != scene.geometry.triangles())
+    material.require("model", "")
+        .fail(triangle_material
+                  ? "is a triangle-mesh material, but the geometry is a subdivision cage"
+                  : "is a subdivision-shell material, but the geometry is a triangle mesh",
+              triangle_material ? "clyde-orthotropic or isotropic-svk, or geometry: {mesh: {...}}"
+                                : "neo-hookean or st-venant-kirchhoff, or geometry: {cage: {...}}");
   if (const auto effects = root.find("effects"))
     scene.effects = read_effects(*effects, scene.geometry);
   if (const auto initial = root.find("initial_state")) {
     scene.initial_state = read_initial_state(*initial, scene_dir);
   }
   scene.time = read_time(root.require("time", "{dt: ..., steps: ...}"));
+  if (scene.time.quasistatic() && scene.has_inertia()) {
+    const Field effects = *root.find("effects");
+    effects.check(false, "a quasistatic scene has no inertia effect",
+                  "no inertia (time.proximal_step sets the proximal term), or integrator: "
+                  "implicit_euler");
+  }
   if (const auto probes = root.find("probes")) scene.probes = read_probes(*probes, scene.geometry);
   if (const auto output = root.find("output")) scene.output = read_output(*output);
   if (const auto solver = root.find("solver")) scene.solver = read_solver(*solver, scene_dir);
@@ -200,6 +228,11 @@ Vec3 Motion::at(double t) const {
 
 std::string effect_name(const Effect& e) {
   return std::string(scene_reading::kEffectNames[e.index()]);
+}
+
+bool GeometrySpec::has_frame() const {
+  if (mesh) return mesh->generator == TriangleMeshSpec::Generator::kRectangle;
+  return !std::holds_alternative<ObjCage>(cage);
 }
 
 bool Scene::has_inertia() const {

@@ -20,6 +20,14 @@ geometry:                    required
         cut [0.3, 0.3]; each cut in (0, size), a whole number of faces, one face left at least
     {obj: path}              an all-quad OBJ mesh
   refine: int                uniform Catmull-Clark refinements of the cage, 0..8 (default 0)
+  mesh:                      instead of cage and refine: a triangle-mesh shell (paper 2); one of
+    {obj: path}              a triangle OBJ; `g name` lines name vertex groups for group(name)
+    {generator: rectangle, size: [w, h], faces: [nx, ny], origin: [x, y]}   structured, with
+        alternating diagonals (defaults size [1, 1], faces [8, 8]); or instead of faces
+        edge_length: l      an unstructured Delaunay mesh with edges of about l (<= w/2, h/2)
+    {generator: cylinder, radius: r, length: l, faces: [around >= 3, along]}   open, axis z
+    {generator: dome, radius: r, opening_angle: a, rings: n}   apex on +z, rim at a in (0, pi)
+    {generator: sphere, radius: r, subdivisions: s}   closed icosphere, s in 0..8
 material:                    required
   model: clyde-orthotropic   woven cloth, eq. (3.3)-(3.4) of Kopanicakova et al. 2019
     preset: denim            Table 1 of the paper with its coupling limited so that the energy is
@@ -37,6 +45,9 @@ material:                    required
   model: isotropic-svk       St. Venant-Kirchhoff
     youngs_modulus: E        Pa, > 0 (required)
     poisson_ratio: nu        in (-1, 0.5) (required)
+  model: neo-hookean | st-venant-kirchhoff   triangle meshes: that membrane plus hinge bending
+                             k = E tau^3/(24 (1 - nu^2)); E, nu, thickness as above, and
+    volume_density: number   kg/m^3, >= 0 (required; instead of density)
   thickness: number          m, > 0; required (denim preset: 0.66e-3)
   density: number            area density kg/m^2, >= 0; required (denim preset: 0.4)
   thickness_points: int      Gauss points through the thickness, 1..8 (default 3)
@@ -50,12 +61,14 @@ effects:                     optional list; only the listed effects are simulate
   - dirichlet: {where: CURVE or POINT, components: [x, y, z], motion: MOTION, sigma: s,
                 penalty: beta}
   - clamp: {where: CURVE, motion: MOTION, sigma: s, penalty: beta, rotation_penalty: b}
+  - pressure: {pressure: p, ramp: bool}   Pa; work p (V(x) - V(X)) of the enclosed volume of a
+                             closed triangle mesh (outward normals: p > 0 inflates)
     ramp: false (default) or true: the load grows linearly from 0 to full over the steps.
     components: non-empty subset of x, y, z, no repeats (default all three).
     sigma: > 0 (default 5): penalty beta = (Y tau / Y tau_denim) (1 m / L) (h / L)^-sigma for the
         finest mesh size h, the membrane stiffness Y tau of the material and the size L of the
         surface (the paper's h^-sigma for its 1 m denim); penalty: explicit beta > 0.
-    rotation_penalty: > 0 (default beta * h^2).
+    rotation_penalty: > 0 (default beta * h^2; triangle meshes: the clamp hinges' stiffness, k).
     MOTION = {translate: [dx, dy, dz], over: [t0, t1]}: the prescribed displacement is 0 until
     t0, grows linearly to translate at t1 and stays there; t0 <= t1 (t0 == t1 is a jump).
 initial_state:               optional; default: the reference configuration
@@ -65,6 +78,11 @@ initial_state:               optional; default: the reference configuration
 time:                        required
   dt: number                 s, > 0
   steps: int                 1..1000000
+  integrator: implicit_euler | quasistatic   default implicit_euler; quasistatic (paper 2 eq. 1)
+                             repeats argmin |x - x_k|_M^2 / (2 h^2) + E(x) until |grad E| meets
+                             the solver's tolerance; dt is a load step for motions and ramps
+  proximal_step: h           s, > 0 (quasistatic only; default 1)
+  max_proximal_solves: int   per step, 1..100000 (quasistatic only; default 50)
 probes:                      optional map NAME: POINT; NAME uses letters, digits, _ - .
 output:                      optional
   dir: path                  default out
@@ -79,12 +97,16 @@ WHERE: selections for effects and probes
   CURVE  boundary                 the whole boundary
          boundary(SIDE)           SIDE: left, right, bottom, top; re-entrant (l-shape cages only)
          {box: {min: [x, y, z], max: [x, y, z]}}     boundary parts inside the box; min <= max
+                                  (on triangle meshes: every vertex inside the box)
+         boundary(loop k), group(name)   triangle meshes: boundary loop k = 0, 1, ..., the
+                                  vertices of an OBJ group (rectangles: left, right, bottom, top)
   POINT  {at: [x, y, z]}          the surface point nearest to (x, y, z)
          corner(CORNER)           CORNER: bottom-left, bottom-right, top-left, top-right (not on
                                   an l-shape, whose top-right block is cut away)
          point(u, v)              u, v in [0, 1] over the cage's rectangle, outside the cut
-  Named sides, corners and point(u, v) need a generated cage; with an OBJ cage use {at: ...} or
-  {box: ...}. Inside a {...} map, quote point(u, v): the comma would end the value otherwise.
+  Named sides, corners and point(u, v) need a generated cage or rectangle mesh; else use
+  {at: ...} or {box: ...}. On triangle meshes a POINT is the nearest vertex. Inside a {...}
+  map, quote point(u, v): the comma would end the value otherwise.
 
 EXAMPLE
   name: drape

@@ -17,7 +17,7 @@ constexpr std::array<std::string_view, 5> kSides{"left", "right", "bottom", "top
 constexpr std::array<std::string_view, 4> kCorners{"bottom-left", "bottom-right", "top-left",
                                                    "top-right"};
 constexpr std::string_view kWhereForms =
-    "boundary, boundary(left|right|bottom|top|re-entrant), "
+    "boundary, boundary(left|right|bottom|top|re-entrant), boundary(loop k), group(name), "
     "corner(bottom-left|bottom-right|top-left|top-right), point(u, v), {at: [x, y, z]} or "
     "{box: {min: [x, y, z], max: [x, y, z]}}";
 
@@ -137,6 +137,23 @@ Where parse_where_text(const std::string& text, const std::string& context) {
   }
 
   if (name == "boundary" && !args) return Where{CurveSelection{}, std::string(written)};
+  if (name == "boundary" && args->substr(0, 4) == "loop") {
+    const std::string number(trim(args->substr(4)));
+    const std::optional<double> k = scene_reading::parse_real(number);
+    if (!k || *k < 0 || *k != std::floor(*k) || *k > 1e6)
+      fail("boundary(loop k) needs a loop number k = 0, 1, ...", "boundary(loop 0)");
+    CurveSelection loop;
+    loop.kind = CurveSelection::Kind::Loop;
+    loop.loop = static_cast<int>(*k);
+    return Where{loop, std::string(written)};
+  }
+  if (name == "group") {
+    if (!args || args->empty()) fail("group(name) needs the name of an OBJ group", "group(name)");
+    CurveSelection group;
+    group.kind = CurveSelection::Kind::Group;
+    group.group = *args;
+    return Where{group, std::string(written)};
+  }
   if (name == "boundary") {
     if (!is_one_of(*args, kSides)) fail("unknown side", "left, right, bottom, top or re-entrant");
     CurveSelection side;
@@ -179,14 +196,24 @@ Where read_where(const Field& field, SelectionUse use, std::string_view who,
     field.fail(user + " needs a point selection, not a curve",
                "{at: [x, y, z]}, corner(<corner>) or point(u, v)");
   }
-  if (std::holds_alternative<ObjCage>(geometry.cage) && needs_generated_cage(where)) {
-    field.fail("named sides, corners and point(u, v) exist only on generated cages",
-               "with an OBJ cage, {at: [x, y, z]} or {box: {min: [x, y, z], max: [x, y, z]}}");
+  if (!geometry.has_frame() && needs_generated_cage(where)) {
+    if (!geometry.triangles())
+      field.fail("named sides, corners and point(u, v) exist only on generated cages",
+                 "with an OBJ cage, {at: [x, y, z]} or {box: {min: [x, y, z], max: [x, y, z]}}");
+    field.fail("named sides, corners and point(u, v) exist only on generated rectangle meshes",
+               "{at: [x, y, z]}, {box: {min: [x, y, z], max: [x, y, z]}}, boundary(loop k) or "
+               "group(name)");
   }
-  if (is_re_entrant(where) && !std::holds_alternative<LShapeCage>(geometry.cage)) {
+  if (const auto* curve = std::get_if<CurveSelection>(&where.selection);
+      curve && !geometry.triangles() &&
+      (curve->kind == CurveSelection::Kind::Loop || curve->kind == CurveSelection::Kind::Group))
+    field.fail("boundary(loop k) and group(name) exist only on triangle meshes");
+  if (is_re_entrant(where) &&
+      (geometry.triangles() || !std::holds_alternative<LShapeCage>(geometry.cage))) {
     field.fail("boundary(re-entrant) exists only on an l-shape cage");
   }
-  if (const auto* l_shape = std::get_if<LShapeCage>(&geometry.cage)) {
+  if (const auto* l_shape = std::get_if<LShapeCage>(&geometry.cage);
+      l_shape && !geometry.triangles()) {
     field.check(!is_in_cut(where, *l_shape), "lies in the block cut away from the l-shape",
                 "a point of the l-shape; its top-right corner is the cut");
   }

@@ -10,14 +10,20 @@
 
 namespace mlshell {
 
-PenaltyScale PenaltyScale::of(const MaterialSpec& material, const SubdivisionDiscretization& disc) {
-  PenaltyScale s;
+double PenaltyScale::membrane_stiffness_of(const MaterialSpec& material) {
   double Y = 0.0;
   if (const auto* c = std::get_if<ClydeMaterial>(&material.model))
     Y = std::max(c->k[0], c->k[2]);
   else if (const auto* v = std::get_if<SvkMaterial>(&material.model))
     Y = v->youngs_modulus / (1.0 - v->poisson_ratio * v->poisson_ratio);
-  s.membrane_stiffness = Y * material.thickness;
+  else if (const auto* t = std::get_if<TriangleMaterial>(&material.model))
+    Y = t->youngs_modulus / (1.0 - t->poisson_ratio * t->poisson_ratio);
+  return Y * material.thickness;
+}
+
+PenaltyScale PenaltyScale::of(const MaterialSpec& material, const SubdivisionDiscretization& disc) {
+  PenaltyScale s;
+  s.membrane_stiffness = membrane_stiffness_of(material);
   // The reference limit surface at the corners of every element (ghost faces are not elements).
   std::vector<SurfacePoint> corners;
   for (int f : disc.elements())
@@ -116,6 +122,8 @@ SurfacePoint resolve_point(const SubdivisionDiscretization& disc, const Where& w
   return select_point(disc, std::get<PointSelection>(where.selection), frame, where.text);
 }
 
+}  // namespace
+
 std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motion>& m) {
   if (!m) return [](double) { return Eigen::Vector3d::Zero(); };
   Motion motion = *m;
@@ -124,6 +132,8 @@ std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motio
     return Eigen::Vector3d(d[0], d[1], d[2]);
   };
 }
+
+namespace {
 
 std::unique_ptr<EnergyTerm> penalty_term(const std::string& name,
                                          const SubdivisionDiscretization& disc,
@@ -163,9 +173,13 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
   const double h = penalty_mesh_size > 0.0 ? penalty_mesh_size : disc.mesh_size();
   const PenaltyScale scale = PenaltyScale::of(scene.material, disc);
   const int nlocal = layout.num_local_points();
+  if (scene.time.quasistatic())
+    problem->add_term(std::make_unique<InertiaTerm>(disc, layout, scene.material.density,
+                                                    scene.time.proximal_step, "proximal"));
   for (size_t index = 0; index < scene.effects.size(); ++index) {
     const Effect& effect = scene.effects[index];
     const std::string name = effect_name(effect);
+    const size_t first_new = problem->terms().size();
     try {
       if (std::holds_alternative<InertiaEffect>(effect)) {
         problem->add_term(
@@ -214,6 +228,8 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
       throw SceneError(scene.file.string() + ": effects[" + std::to_string(index) + "]." + name +
                        ".where: " + e.what());
     }
+    for (size_t t = first_new; t < problem->terms().size(); ++t)
+      problem->terms()[t]->set_effect_index(static_cast<int>(index));
   }
   return problem;
 }

@@ -8,11 +8,15 @@ namespace mlshell {
 
 MultilevelProblem::MultilevelProblem(const Scene& scene, const LevelHierarchy& levels,
                                      const CageFrame& frame)
-    : levels_(levels), dt_(scene.time.dt) {
+    : MultilevelProblem(levels, scene.time.dt, [&](int l) {
+        return build_level_problem(scene, levels.discretization(l), levels.layout(l), frame,
+                                   levels.discretization(levels.finest()).mesh_size());
+      }) {}
+
+MultilevelProblem::MultilevelProblem(const Levels& levels, double dt, const LevelBuilder& build)
+    : levels_(levels), dt_(dt) {
   for (int l = 0; l < levels.num_levels(); ++l) {
-    problems_.push_back(build_level_problem(scene, levels.discretization(l), levels.layout(l),
-                                            frame,
-                                            levels.discretization(levels.finest()).mesh_size()));
+    problems_.push_back(build(l));
     Vec u, v;
     PetscCallAbort(levels.layout(l).comm(), levels.layout(l).create_vector(&u));
     PetscCallAbort(levels.layout(l).comm(), levels.layout(l).create_vector(&v));
@@ -34,16 +38,11 @@ PetscErrorCode MultilevelProblem::synchronize(double time, Vec u_finest, Vec v_f
   PetscCall(levels_.project_down(u_[top], u_));
   PetscCall(levels_.project_down(v_[top], v_));
   for (int l = 0; l <= top; ++l) {
-    problems_[l]->set_time(time);
-    if (auto* inertia = problems_[l]->find_term<InertiaTerm>()) {
-      Vec predictor;
-      std::vector<double> local;
-      PetscCall(VecDuplicate(u_[l], &predictor));
-      PetscCall(VecWAXPY(predictor, dt_, v_[l], u_[l]));
-      PetscCall(levels_.layout(l).to_local(predictor, local));
-      PetscCall(VecDestroy(&predictor));
-      inertia->set_predictor(std::move(local));
-    }
+    Vec predictor;
+    PetscCall(VecDuplicate(u_[l], &predictor));
+    PetscCall(VecWAXPY(predictor, dt_, v_[l], u_[l]));
+    PetscCall(problems_[l]->begin_step(time, predictor));
+    PetscCall(VecDestroy(&predictor));
   }
   PetscFunctionReturn(0);
 }

@@ -10,6 +10,9 @@
 #include "mlshell/effects.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/subdivision/level_hierarchy.hpp"
+#include "mlshell/triangle/triangle_effect_builder.hpp"
+#include "mlshell/triangle/triangle_levels.hpp"
+#include "mlshell/triangle/triangle_selection.hpp"
 #include "simulation_output.hpp"
 
 namespace mlshell {
@@ -107,36 +110,18 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   }
   const LogStageScope setup(stage_setup_);
   frame_ = CageFrame::from(scene_.geometry);
-  try {
-    hierarchy_ =
-        std::make_unique<SubdivisionHierarchy>(build_cage(scene_.geometry), scene_.geometry.refine);
-  } catch (const MeshError& e) {
-    throw SceneError(scene_.file.string() + ": geometry.cage: " + e.what());
-  }
-  if (options_.hierarchy_view || !options_.hierarchy_write.empty()) {
-    const LevelHierarchy levels(comm, *hierarchy_, 0, options_.gauss_points);
-    if (options_.hierarchy_view) PetscCallAbort(comm, view_hierarchy(levels, comm));
-    if (!options_.hierarchy_write.empty()) write_hierarchy(levels, options_.hierarchy_write);
-  }
-  // RMTR needs the scene on every level; other solvers only on the finest.
-  const int finest = hierarchy_->num_levels() - 1;
-  const int coarsest = step_solver_type() == "rmtr" ? 0 : finest;
-  levels_ = std::make_unique<LevelHierarchy>(comm, *hierarchy_, coarsest, options_.gauss_points);
-  multilevel_ = std::make_unique<MultilevelProblem>(scene_, *levels_, frame_);
+  if (scene_.geometry.triangles())
+    setup_triangles();
+  else
+    setup_subdivision();
   disc_ = &levels_->discretization(levels_->finest());
   layout_ = &levels_->layout(levels_->finest());
   problem_ = &multilevel_->level(levels_->finest());
-  for (const Probe& p : scene_.probes) {
-    try {
-      probes_.push_back(
-          select_point(*disc_, std::get<PointSelection>(p.where.selection), frame_, p.where.text));
-    } catch (const SceneError& e) {
-      throw SceneError(scene_.file.string() + ": probes." + p.name + ": " + e.what());
-    }
-  }
+  const bool psd = hessian_projection_option(step_solver_type());
+  for (int l = 0; l < multilevel_->num_levels(); ++l)
+    for (const auto& t : multilevel_->level(l).terms()) t->set_hessian_projection(psd);
   PetscCallAbort(comm, layout_->create_vector(&u_));
   PetscCallAbort(comm, VecDuplicate(u_, &v_));
-  PetscCallAbort(comm, VecDuplicate(u_, &u_prev_));
   PetscCallAbort(comm, VecZeroEntries(v_));
 
   output_ = std::make_unique<Output>();
@@ -146,14 +131,72 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
     fs::create_directories(output_->dir);
     // A summary left by an earlier run must not pass for this run's result.
     fs::remove(output_->dir / "summary.json");
-    output_->sampler = std::make_unique<SurfaceSampler>(*disc_, scene_.output.samples_per_face);
+    output_->sampler = disc_->sampling(scene_.output.samples_per_face);
   }
+}
+
+void Simulation::setup_subdivision() {
+  try {
+    hierarchy_ =
+        std::make_unique<SubdivisionHierarchy>(build_cage(scene_.geometry), scene_.geometry.refine);
+  } catch (const MeshError& e) {
+    throw SceneError(scene_.file.string() + ": geometry.cage: " + e.what());
+  }
+  if (options_.hierarchy_view || !options_.hierarchy_write.empty()) {
+    const LevelHierarchy levels(comm_, *hierarchy_, 0, options_.gauss_points);
+    if (options_.hierarchy_view) PetscCallAbort(comm_, view_hierarchy(levels, comm_));
+    if (!options_.hierarchy_write.empty()) write_hierarchy(levels, options_.hierarchy_write);
+  }
+  // RMTR needs the scene on every level; other solvers only on the finest.
+  const int finest = hierarchy_->num_levels() - 1;
+  const int coarsest = step_solver_type() == "rmtr" ? 0 : finest;
+  auto levels =
+      std::make_unique<LevelHierarchy>(comm_, *hierarchy_, coarsest, options_.gauss_points);
+  multilevel_ = std::make_unique<MultilevelProblem>(scene_, *levels, frame_);
+  const SubdivisionDiscretization& disc = levels->discretization(levels->finest());
+  for (const auto& p : scene_.probes) {
+    try {
+      const SurfacePoint sp =
+          select_point(disc, std::get<PointSelection>(p.where.selection), frame_, p.where.text);
+      const PointBasis b = disc.evaluator().evaluate({sp})[0];
+      probes_.push_back({b.nodes, b.w[kValue], b.apply(kValue, disc.mesh().points)});
+    } catch (const SceneError& e) {
+      throw SceneError(scene_.file.string() + ": probes." + p.name + ": " + e.what());
+    }
+  }
+  levels_ = std::move(levels);
+}
+
+void Simulation::setup_triangles() {
+  TriangleMesh mesh;
+  try {
+    mesh = build_triangle_mesh(*scene_.geometry.mesh);
+  } catch (const MeshError& e) {
+    throw SceneError(scene_.file.string() + ": geometry.mesh: " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene_.file.string() + ": geometry.mesh: " + e.what());
+  }
+  auto levels = std::make_unique<TriangleLevels>(comm_, std::move(mesh));
+  const TriangleLevels& t = *levels;
+  multilevel_ = std::make_unique<MultilevelProblem>(*levels, scene_.time.dt, [&](int l) {
+    return build_triangle_problem(scene_, t.discretization(l), t.layout(l), frame_);
+  });
+  const TriangleDiscretization& disc = t.discretization(t.finest());
+  for (const auto& p : scene_.probes) {
+    try {
+      const int v =
+          select_vertex(disc, std::get<PointSelection>(p.where.selection), frame_, p.where.text);
+      probes_.push_back({{v}, {1.0}, disc.points()[v]});
+    } catch (const SceneError& e) {
+      throw SceneError(scene_.file.string() + ": probes." + p.name + ": " + e.what());
+    }
+  }
+  levels_ = std::move(levels);
 }
 
 Simulation::~Simulation() {
   VecDestroy(&u_);
   VecDestroy(&v_);
-  VecDestroy(&u_prev_);
 }
 
 PetscErrorCode Simulation::natural_displacement(std::vector<double>& u) const {
@@ -195,7 +238,7 @@ PetscErrorCode Simulation::set_initial_state() {
     if (init.affine) {
       const auto& A = *init.affine;
       for (int i = 0; i < disc_->num_points(); ++i) {
-        const Point3& X = disc_->mesh().points[i];
+        const Point3& X = disc_->points()[i];
         for (int r = 0; r < 3; ++r)
           u[3 * i + r] =
               A[r][0] * X[0] + A[r][1] * X[1] + A[r][2] * X[2] + init.translate[r] - X[r];
@@ -231,18 +274,8 @@ PetscErrorCode Simulation::evaluate(int* status) {
 
 PetscErrorCode Simulation::step(int n, SolveReport& report) {
   PetscFunctionBeginUser;
-  const double dt = scene_.time.dt, t = n * dt;
-  PetscCall(VecCopy(u_, u_prev_));
-  // Every level to time t, with the inertia predictor û = u_n + dt v_n (projected on the
-  // coarse levels).
-  PetscCall(multilevel_->synchronize(t, u_, v_));
-  {
-    const LogStageScope solve(stage_solve_);
-    PetscCall(solver_->solve(u_, report));
-  }
-  // v_{n+1} = (u_{n+1} − u_n) / dt
-  PetscCall(VecWAXPY(v_, -1.0, u_prev_, u_));
-  PetscCall(VecScale(v_, 1.0 / dt));
+  const LogStageScope solve(stage_solve_);
+  PetscCall(stepper_->advance(n * scene_.time.dt, u_, v_, report));
   PetscFunctionReturn(0);
 }
 
@@ -256,6 +289,15 @@ PetscErrorCode Simulation::run(int* status) {
   {
     const LogStageScope setup(stage_setup_);
     solver_ = std::make_unique<StepSolver>(*problem_, multilevel_.get());
+    if (scene_.time.quasistatic()) {
+      const EnergyTerm* proximal = nullptr;
+      for (const auto& t : problem_->terms())
+        if (t->name() == "proximal") proximal = t.get();
+      stepper_ = std::make_unique<Quasistatic>(*multilevel_, *solver_, *proximal,
+                                               scene_.time.max_proximal_solves);
+    } else {
+      stepper_ = std::make_unique<ImplicitEuler>(*multilevel_, *solver_, scene_.time.dt);
+    }
   }
   PetscCall(
       PetscPrintf(comm_,
@@ -383,11 +425,11 @@ PetscErrorCode Simulation::report_constraints(int step) {
     violation_max_[i] = std::max(violation_max_[i], violation_last_[i]);
     if (violation_last_[i] > kConstraintWarning * h)
       PetscCall(PetscPrintf(comm_,
-                            "mlshell: step %d: %s (effects[%zu]) is violated by %.3g m, more than "
+                            "mlshell: step %d: %s (effects[%d]) is violated by %.3g m, more than "
                             "%g h = %.3g m: its penalty is too soft for this material and size "
                             "(raise sigma or set penalty)\n",
-                            step, terms[i]->name().c_str(), i - 1, violation_last_[i],
-                            kConstraintWarning, kConstraintWarning * h));
+                            step, terms[i]->name().c_str(), terms[i]->effect_index(),
+                            violation_last_[i], kConstraintWarning, kConstraintWarning * h));
   }
   PetscFunctionReturn(0);
 }

@@ -19,8 +19,12 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
   const bool frame_due = force || n % scene_.output.every == 0;
   std::vector<double> u;
   PetscCall(layout_->gather_natural(u_, u));
+  std::vector<std::pair<std::string, std::vector<double>>> fields;
+  if (frame_due) PetscCall(problem_->face_fields(u_, disc_->num_faces(), fields));
   if (rank_ == 0 && frame_due) {
-    const SurfaceSample s = output_->sampler->sample(u);
+    SurfaceSample s = output_->sampler->sample(u);
+    // Per-face fields go with samplings that have one cell per face (triangle meshes).
+    if (s.num_cells() == disc_->num_faces()) s.cell_data = std::move(fields);
     const auto& formats = scene_.output.formats;
     auto has = [&](const char* f) {
       return std::find(formats.begin(), formats.end(), f) != formats.end();
@@ -75,8 +79,7 @@ PetscErrorCode Simulation::write_limit_csv() {
   std::vector<double> u;
   PetscCall(layout_->gather_natural(u_, u));
   if (rank_ == 0) {
-    const SurfaceSampler sampler(*disc_, options_.limit_csv_samples);
-    const SurfaceSample s = sampler.sample(u);
+    const SurfaceSample s = disc_->sampling(options_.limit_csv_samples)->sample(u);
     std::string text = "X,Y,Z,ux,uy,uz\n";
     char line[256];
     for (size_t i = 0; i + 2 < s.points.size(); i += 3) {
@@ -114,12 +117,11 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
     for (const auto& [k, val] : sums) energy.emplace_back(k, Json(val));
     energy.emplace_back("total", Json(total));
     Json::Object probes;
-    const auto bases = disc_->evaluator().evaluate(probes_);
     for (size_t p = 0; p < probes_.size(); ++p) {
-      const Point3 X = bases[p].apply(kValue, disc_->mesh().points);
+      const Point3& X = probes_[p].reference;
       std::vector<double> d(3, 0.0);
-      for (int i = 0; i < bases[p].size(); ++i)
-        for (int c = 0; c < 3; ++c) d[c] += bases[p].w[kValue][i] * u[3 * bases[p].nodes[i] + c];
+      for (size_t i = 0; i < probes_[p].nodes.size(); ++i)
+        for (int c = 0; c < 3; ++c) d[c] += probes_[p].weights[i] * u[3 * probes_[p].nodes[i] + c];
       probes.emplace_back(scene_.probes[p].name,
                           Json(Json::Object{{"reference", Json::array({X[0], X[1], X[2]})},
                                             {"displacement", Json::array(d)}}));
@@ -174,7 +176,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
       if (!p) continue;
       constraints.push_back(
           Json(Json::Object{{"effect", Json(p->name())},
-                            {"index", Json(static_cast<long long>(i) - 1)},
+                            {"index", Json(static_cast<long long>(p->effect_index()))},
                             {"max_violation", Json(violation_last_[i])},
                             {"max_violation_all_steps", Json(violation_max_[i])},
                             {"warning_threshold", Json(kConstraintWarning * disc_->mesh_size())}}));

@@ -18,7 +18,7 @@ struct Simulation::Output {
   std::filesystem::path dir;
   std::unique_ptr<XdmfSeries> xdmf;
   std::unique_ptr<CsvTable> csv;
-  std::unique_ptr<SurfaceSampler> sampler;
+  std::unique_ptr<SurfaceSampling> sampler;
   std::vector<std::string> effect_names;
 };
 

@@ -71,6 +71,18 @@ for scene in "${bad_scenes[@]}"; do
   run_case "bad-${base%.yaml}" 2 "$base" "$scene" "$scene"
 done
 
+# --- scenes that parse but fail on their mesh (tests/data/bad_on_mesh) ---------------------------------
+# Selections and effects that the mesh itself refutes: still exit 2, naming the scene file.
+shopt -s nullglob
+mesh_scenes=("$SRC"/tests/data/bad_on_mesh/*.yaml)
+shopt -u nullglob
+[[ ${#mesh_scenes[@]} -gt 0 ]] || { echo "FAIL: no scenes in $SRC/tests/data/bad_on_mesh" >&2; exit 1; }
+echo "== ${#mesh_scenes[@]} scenes refuted by their mesh"
+for scene in "${mesh_scenes[@]}"; do
+  base=$(basename "$scene")
+  run_case "on-mesh-${base%.yaml}" 2 "$base" "$scene" "$scene"
+done
+
 # --- the command line -----------------------------------------------------------------------------
 echo "== command line"
 run_case missing-scene 2 "no_such_scene.yaml" "" no_such_scene.yaml
@@ -147,6 +159,47 @@ time: {dt: 1.0, steps: 1}
 output: {dir: out/$mesh}
 EOF
   run_case "obj-$mesh" 2 "$mesh.obj" "$WORK/meshes/$mesh.yaml" "$WORK/meshes/$mesh.yaml"
+done
+
+# --- broken OBJ triangle meshes ---------------------------------------------------------------------
+# Each names the file and line (and the vertex or face at fault).
+echo "== broken OBJ triangle meshes"
+write_tri() { printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n' >"$WORK/meshes/$1.obj"; cat >>"$WORK/meshes/$1.obj"; }
+write_tri tri_non_manifold <<'EOF'
+v 0.5 0.5 1
+f 1 2 3
+f 1 3 4
+f 1 3 5
+EOF
+write_tri tri_flipped <<'EOF'
+f 1 2 3
+f 1 4 3
+EOF
+write_tri tri_degenerate <<'EOF'
+v 2 0 0
+f 1 2 3
+f 1 2 5
+EOF
+write_tri tri_nan <<'EOF'
+v nan 0 0
+f 1 2 3
+f 3 5 1
+EOF
+write_tri tri_bad_index <<'EOF'
+f 1 2 3
+f 1 3 7
+EOF
+for mesh in tri_non_manifold tri_flipped tri_degenerate tri_nan tri_bad_index; do
+  cat >"$WORK/meshes/$mesh.yaml" <<EOF
+geometry: {mesh: {obj: $mesh.obj}}
+material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, thickness: 1e-3,
+           volume_density: 500}
+effects:
+  - gravity
+time: {dt: 1.0, steps: 1}
+output: {dir: out/$mesh}
+EOF
+  run_case "obj-$mesh" 2 "$mesh.obj:" "$WORK/meshes/$mesh.yaml" "$WORK/meshes/$mesh.yaml"
 done
 
 # --- a selection that selects nothing ---------------------------------------------------------------

@@ -16,13 +16,15 @@
 #include <string>
 #include <vector>
 
+#include "mlshell/level_transfer.hpp"
+#include "mlshell/levels.hpp"
 #include "mlshell/parallel_layout.hpp"
 #include "mlshell/subdivision/subdivision_discretization.hpp"
 #include "mlshell/subdivision/subdivision_hierarchy.hpp"
 
 namespace mlshell {
 
-class LevelHierarchy {
+class LevelHierarchy final : public Levels {
  public:
   /// Levels `coarsest`..`subdivision.num_levels() − 1` of the subdivision hierarchy; level index
   /// 0 of this object is the coarsest of them.
@@ -31,25 +33,20 @@ class LevelHierarchy {
   LevelHierarchy(const LevelHierarchy&) = delete;
   LevelHierarchy& operator=(const LevelHierarchy&) = delete;
 
-  int num_levels() const { return static_cast<int>(levels_.size()); }
-  int finest() const { return num_levels() - 1; }
-  const SubdivisionDiscretization& discretization(int l) const { return *levels_[l].disc; }
-  const ParallelLayout& layout(int l) const { return *levels_[l].layout; }
+  int num_levels() const override { return static_cast<int>(levels_.size()); }
+  const SubdivisionDiscretization& discretization(int l) const override { return *levels_[l].disc; }
+  const ParallelLayout& layout(int l) const override { return *levels_[l].layout; }
   /// S_l^{l+1}, R_{l+1}^l = Sᵀ and Q_{l+1}^l for l < finest().
   Mat prolongation(int l) const { return transfers_[l].S; }
   Mat restriction(int l) const { return transfers_[l].R; }
   Mat projection(int l) const { return transfers_[l].Q; }
+  /// The three as a LevelTransfer (relative cost 1/4), with the least-squares projection.
+  const LevelTransfer& transfer(int l) const override { return *transfers_[l].linear; }
 
   /// The least-squares projection P = (SᵀS)⁻¹Sᵀ (eq. 5.18) of fine values onto level l: a
   /// solve with the sparse SᵀS (MUMPS Cholesky, set up on first use; P itself is dense and never
   /// formed). For comparison with Q on small and medium problems.
   PetscErrorCode least_squares_projection(int l, Vec fine, Vec coarse) const;
-
-  /// ‖I_{L−1}^L ⋯ I_l^{l+1} x‖₂ (eq. 4.9), applying the prolongations one after the other.
-  PetscErrorCode composite_norm(int l, Vec x, PetscReal* norm) const;
-  /// Fills `coarse[l]` (created by the caller from layout(l)) with the projections Q of the
-  /// finest-level vector `fine` down the hierarchy: the state of every level after a time step.
-  PetscErrorCode project_down(Vec fine, const std::vector<Vec>& coarse) const;
 
  private:
   struct Level {
@@ -60,7 +57,7 @@ class LevelHierarchy {
     Mat S = nullptr, R = nullptr, Q = nullptr;
     Mat StS = nullptr;  // for P, on first use
     KSP normal = nullptr;
-    Vec fine_work = nullptr;  // S x, for the composite norm
+    std::unique_ptr<LinearTransfer> linear;
   };
   std::vector<Level> levels_;
   mutable std::vector<Transfer> transfers_;

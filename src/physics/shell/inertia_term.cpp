@@ -5,8 +5,8 @@
 namespace mlshell {
 
 InertiaTerm::InertiaTerm(const SubdivisionDiscretization& disc, const ParallelLayout& layout,
-                         double area_density, double dt)
-    : EnergyTerm("inertia"),
+                         double area_density, double dt, std::string name)
+    : EnergyTerm(std::move(name)),
       coefficient_(area_density / (dt * dt)),
       predictor_(3 * layout.num_local_points(), 0.0) {
   const int ng = disc.num_quadrature_points();

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "mlshell/effects.hpp"
+#include "mlshell/psd_projection.hpp"
 
 namespace mlshell {
 
@@ -104,7 +105,10 @@ PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSu
               He[(3 * i + c) * 3 * n + 3 * j + d] = He[(3 * j + d) * 3 * n + 3 * i + c];
     }
     if (grad) add_local_gradient(e.nodes, ge.data(), *grad);
-    if (hess) PetscCall(add_local_hessian(hess, e.nodes, He.data()));
+    if (hess) {
+      if (projects_hessian()) project_to_psd(Eigen::Map<Eigen::MatrixXd>(He.data(), 3 * n, 3 * n));
+      PetscCall(add_local_hessian(hess, e.nodes, He.data()));
+    }
   }
   PetscFunctionReturn(0);
 }

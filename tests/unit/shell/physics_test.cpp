@@ -203,7 +203,8 @@ double plate_deflection(int refine) {
       std::filesystem::temp_directory_path() / ("mlshell_plate_" + std::to_string(refine));
   const SolvedScene solved = solve_scene(scene, PETSC_COMM_SELF, dir);
   EXPECT_EQ(solved.status, 0);
-  const SubdivisionDiscretization& disc = solved.simulation->discretization();
+  const auto& disc =
+      dynamic_cast<const SubdivisionDiscretization&>(solved.simulation->discretization());
   const std::vector<double>& u = solved.displacement;
   const SurfacePoint c = nearest_surface_point(disc, Point3(0.5, 0.5, 0.0));
   const PointBasis b = disc.evaluator().evaluate({c})[0];

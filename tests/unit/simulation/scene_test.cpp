@@ -660,10 +660,10 @@ TEST(SceneErrors, InlineDefects) {
        {"probes.p: lies in the block cut away", "got 'corner(top-right)'"}},
       {"unknown_model",
        with([](SceneText& t) {
-         t.material = "material: {model: neo-hookean, thickness: 1, density: 1}\n";
+         t.material = "material: {model: mooney-rivlin, thickness: 1, density: 1}\n";
        }),
        2,
-       {"material.model: unknown material model; got 'neo-hookean'"}},
+       {"material.model: unknown material model; got 'mooney-rivlin'"}},
       {"unknown_preset",
        with([](SceneText& t) {
          t.material = "material: {model: clyde-orthotropic, preset: silk}\n";

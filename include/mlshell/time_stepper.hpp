@@ -1,0 +1,68 @@
+// How a simulation moves from one step to the next: each step is one or more minimisations
+// solved by a StepSolver (DESIGN.md, "TimeStepper").
+//
+//   implicit Euler (paper 1 eq. 3.2)  u_{n+1} = argmin ρ/(2dt²)‖u − û‖²_M + E(u), û = u_n + dt v_n,
+//                                     v_{n+1} = (u_{n+1} − u_n)/dt
+//   quasistatic (paper 2 eq. 1)       x^{k+1} = argmin ½h⁻²‖x − x^k‖²_M + E(x) with the artificial
+//                                     step h (the scene's `proximal` term), repeated from the
+//                                     last step's state until ‖∇E(x)‖ ≤ ε; no velocity
+//
+// Both move every level of the problem to the step's time (boundary motion, load ramps) and
+// give each level its predictor (projected from the finest level) before each solve.
+#pragma once
+
+#include <petscvec.h>
+
+#include <string>
+
+#include "mlshell/multilevel_problem.hpp"
+#include "mlshell/step_solver.hpp"
+
+namespace mlshell {
+
+class TimeStepper {
+ public:
+  virtual ~TimeStepper() = default;
+  /// "implicit_euler" or "quasistatic".
+  virtual std::string name() const = 0;
+  /// From the state (u, v) of the last step to that at `time`, in place; the report covers all
+  /// of the step's solves.
+  virtual PetscErrorCode advance(double time, Vec u, Vec v, SolveReport& report) = 0;
+};
+
+class ImplicitEuler final : public TimeStepper {
+ public:
+  ImplicitEuler(MultilevelProblem& levels, StepSolver& solver, double dt);
+  ~ImplicitEuler() override;
+  std::string name() const override { return "implicit_euler"; }
+  PetscErrorCode advance(double time, Vec u, Vec v, SolveReport& report) override;
+
+ private:
+  MultilevelProblem& levels_;
+  StepSolver& solver_;
+  double dt_;
+  Vec u_prev_ = nullptr;
+};
+
+class Quasistatic final : public TimeStepper {
+ public:
+  /// `proximal` is the term ½h⁻²‖x − x^k‖²_M of the finest level; at most `max_solves`
+  /// proximal solves per step.
+  Quasistatic(MultilevelProblem& levels, StepSolver& solver, const EnergyTerm& proximal,
+              int max_solves);
+  ~Quasistatic() override;
+  std::string name() const override { return "quasistatic"; }
+  /// The report's gradient_norm is ‖∇E‖ (without the proximal term); converged when it is
+  /// within the solver's gradient tolerance, or when a proximal solve ends at the limiting
+  /// accuracy (CONVERGED_LIMITING_ACCURACY) with ‖∇E‖ within 100 times of it.
+  PetscErrorCode advance(double time, Vec u, Vec v, SolveReport& report) override;
+
+ private:
+  MultilevelProblem& levels_;
+  StepSolver& solver_;
+  const EnergyTerm& proximal_;
+  int max_solves_;
+  Vec zero_ = nullptr, gradient_ = nullptr;
+};
+
+}  // namespace mlshell

@@ -1,0 +1,24 @@
+// Builds the energy terms of exactly the effects a scene lists, on a triangle-mesh level.
+#pragma once
+
+#include <memory>
+
+#include "mlshell/level_problem.hpp"
+#include "mlshell/scene.hpp"
+#include "mlshell/subdivision/selection.hpp"
+#include "mlshell/triangle/triangle_discretization.hpp"
+
+namespace mlshell {
+
+/// The elastic term (membrane + hinges), the proximal term of a quasistatic integrator, and one
+/// term per scene effect (two for a clamp: its penalty and its hinges). Throws SceneError for
+/// selections that select nothing and for pressure on an open surface.
+std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
+                                                     const TriangleDiscretization& disc,
+                                                     const ParallelLayout& layout,
+                                                     const CageFrame& frame);
+
+/// The triangle mesh of a scene's `geometry: {mesh: ...}`; throws MeshError for a bad mesh.
+TriangleMesh build_triangle_mesh(const TriangleMeshSpec& spec);
+
+}  // namespace mlshell

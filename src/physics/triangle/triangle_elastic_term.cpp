@@ -1,0 +1,123 @@
+// Membrane and hinge-bending energy of a triangle mesh (see triangle_effects.hpp).
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "mlshell/psd_projection.hpp"
+#include "mlshell/triangle/triangle_effects.hpp"
+
+namespace mlshell {
+
+MembraneParameters TriangleShellParameters::lame() const {
+  const double E = youngs_modulus, nu = poisson_ratio;
+  return {E / (2.0 * (1.0 + nu)), E * nu / (1.0 - nu * nu), thickness};
+}
+
+TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
+                                         const ParallelLayout& layout,
+                                         const TriangleShellParameters& params)
+    : EnergyTerm("elastic"), params_(params), lame_(params.lame()) {
+  for (int v : layout.local_points()) reference_.push_back(disc.points()[v]);
+  const auto& X = disc.points();
+  std::vector<int> element_index(disc.num_faces(), -1);
+  for (int f : layout.local_elements()) {
+    const Triangle& t = disc.mesh().triangles[f];
+    Membrane m;
+    for (int k = 0; k < 3; ++k) m.nodes[k] = layout.local_of(t[k]);
+    m.rest = TriangleRest::from(X[t[0]], X[t[1]], X[t[2]]);
+    element_index[f] = static_cast<int>(membranes_.size());
+    membranes_.push_back(m);
+  }
+  // A hinge belongs to the rank of its first triangle, whose stencil holds all four vertices.
+  const double k = hinge_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
+  // Hinges whose second triangle only is here are kept for face_fields (its stencil holds the
+  // four vertices too).
+  for (const Hinge& h : disc.topology().hinges()) {
+    const bool owned = layout.face_owner(h.faces[0]) == layout.rank();
+    if (!owned && layout.face_owner(h.faces[1]) != layout.rank()) continue;
+    Bend b;
+    for (int i = 0; i < 4; ++i) b.nodes[i] = layout.local_of(h.v[i]);
+    b.rest = HingeRest::from(X[h.v[0]], X[h.v[1]], X[h.v[2]], X[h.v[3]], k);
+    b.elements = {element_index[h.faces[0]], element_index[h.faces[1]]};
+    (owned ? hinges_ : shared_hinges_).push_back(b);
+  }
+}
+
+Eigen::Vector3d TriangleElasticTerm::position(const std::vector<double>& u, PetscInt node) const {
+  return reference_[node] + Eigen::Vector3d(u[3 * node], u[3 * node + 1], u[3 * node + 2]);
+}
+
+double TriangleElasticTerm::membrane_energy(const Membrane& m, const std::vector<double>& u,
+                                            Vector9* g, Matrix9* H) const {
+  const Eigen::Vector3d x0 = position(u, m.nodes[0]), x1 = position(u, m.nodes[1]),
+                        x2 = position(u, m.nodes[2]);
+  return params_.membrane == TriangleShellParameters::Membrane::kNeoHookean
+             ? neo_hookean_membrane(m.rest, lame_, x0, x1, x2, g, H)
+             : stvk_membrane(m.rest, lame_, x0, x1, x2, g, H);
+}
+
+PetscErrorCode TriangleElasticTerm::add(const std::vector<double>& u, CompensatedSum& energy,
+                                        std::vector<double>* grad, Mat hess) const {
+  PetscFunctionBeginUser;
+  Vector9 g9;
+  Matrix9 H9;
+  std::vector<PetscInt> nodes(3);
+  // The energy near rest cancels pieces of size ~ 2μτĀ (tr M − 2 − ln det M): its rounding
+  // error is that of those pieces, not of the small result.
+  const double piece = 2.0 * (lame_.mu + std::abs(lame_.lambda)) * lame_.thickness;
+  for (const Membrane& m : membranes_) {
+    const double e = membrane_energy(m, u, grad ? &g9 : nullptr, hess ? &H9 : nullptr);
+    energy.add_with_magnitude(e, std::abs(e) + piece * m.rest.area);
+    if (!std::isfinite(e)) continue;  // the sum is +inf: the solver rejects the point
+    nodes.assign(m.nodes.begin(), m.nodes.end());
+    if (grad) add_local_gradient(nodes, g9.data(), *grad);
+    if (hess) {
+      if (projects_hessian()) project_to_psd(H9);
+      PetscCall(add_local_hessian(hess, nodes, H9.data()));  // symmetric: row = column major
+    }
+  }
+  Vector12 g12;
+  Matrix12 H12;
+  nodes.resize(4);
+  for (const Bend& b : hinges_) {
+    const double e = hinge_bending(b.rest, position(u, b.nodes[0]), position(u, b.nodes[1]),
+                                   position(u, b.nodes[2]), position(u, b.nodes[3]),
+                                   grad ? &g12 : nullptr, hess ? &H12 : nullptr);
+    energy.add(e);
+    if (!std::isfinite(e)) continue;
+    nodes.assign(b.nodes.begin(), b.nodes.end());
+    if (grad) add_local_gradient(nodes, g12.data(), *grad);
+    if (hess) {
+      if (projects_hessian()) project_to_psd(H12);
+      PetscCall(add_local_hessian(hess, nodes, H12.data()));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+void TriangleElasticTerm::face_fields(const std::vector<double>& u, std::vector<double>& strain,
+                                      std::vector<double>& bending) const {
+  strain.assign(membranes_.size(), 0.0);
+  bending.assign(membranes_.size(), 0.0);
+  for (size_t i = 0; i < membranes_.size(); ++i) {
+    const Membrane& m = membranes_[i];
+    const Eigen::Vector3d x0 = position(u, m.nodes[0]);
+    Eigen::Matrix<double, 3, 2> D;
+    D.col(0) = position(u, m.nodes[1]) - x0;
+    D.col(1) = position(u, m.nodes[2]) - x0;
+    // Green strain G = ½(Ā⁻¹A − I); its eigenvalues are the principal strains.
+    const Eigen::Matrix2d G =
+        0.5 * (m.rest.metric_inverse * (D.transpose() * D) - Eigen::Matrix2d::Identity());
+    const Eigen::Vector2cd ev = G.eigenvalues();
+    strain[i] = std::max(ev[0].real(), ev[1].real());
+  }
+  for (const auto* list : {&hinges_, &shared_hinges_})
+    for (const Bend& b : *list) {
+      const double e =
+          hinge_bending(b.rest, position(u, b.nodes[0]), position(u, b.nodes[1]),
+                        position(u, b.nodes[2]), position(u, b.nodes[3]), nullptr, nullptr);
+      for (int k : b.elements)
+        if (k >= 0) bending[k] += 0.5 * e;
+    }
+}
+
+}  // namespace mlshell

@@ -1,0 +1,90 @@
+// Implicit Euler and quasistatic stepping (see time_stepper.hpp).
+#include "mlshell/time_stepper.hpp"
+
+namespace mlshell {
+
+namespace {
+/// A proximal solve that ends at the limiting accuracy ends the step as converged if ‖∇E‖ is
+/// within this factor of the tolerance (the solvers' own -tao_*_limiting_factor default).
+constexpr double kLimitingFactor = 100.0;
+}  // namespace
+
+ImplicitEuler::ImplicitEuler(MultilevelProblem& levels, StepSolver& solver, double dt)
+    : levels_(levels), solver_(solver), dt_(dt) {
+  Vec u = levels.state(levels.num_levels() - 1);
+  PetscCallAbort(PetscObjectComm(reinterpret_cast<PetscObject>(u)), VecDuplicate(u, &u_prev_));
+}
+
+ImplicitEuler::~ImplicitEuler() { VecDestroy(&u_prev_); }
+
+PetscErrorCode ImplicitEuler::advance(double time, Vec u, Vec v, SolveReport& report) {
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(u, u_prev_));
+  // Every level to time t, with the inertia predictor û = u_n + dt v_n (projected on the
+  // coarse levels).
+  PetscCall(levels_.synchronize(time, u, v));
+  PetscCall(solver_.solve(u, report));
+  report.solves = 1;
+  // v_{n+1} = (u_{n+1} − u_n) / dt
+  PetscCall(VecWAXPY(v, -1.0, u_prev_, u));
+  PetscCall(VecScale(v, 1.0 / dt_));
+  PetscFunctionReturn(0);
+}
+
+Quasistatic::Quasistatic(MultilevelProblem& levels, StepSolver& solver, const EnergyTerm& proximal,
+                         int max_solves)
+    : levels_(levels), solver_(solver), proximal_(proximal), max_solves_(max_solves) {
+  Vec u = levels.state(levels.num_levels() - 1);
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(u));
+  PetscCallAbort(comm, VecDuplicate(u, &zero_));
+  PetscCallAbort(comm, VecZeroEntries(zero_));
+  PetscCallAbort(comm, VecDuplicate(u, &gradient_));
+}
+
+Quasistatic::~Quasistatic() {
+  VecDestroy(&zero_);
+  VecDestroy(&gradient_);
+}
+
+PetscErrorCode Quasistatic::advance(double time, Vec u, Vec v, SolveReport& report) {
+  PetscFunctionBeginUser;
+  LevelProblem& finest = levels_.level(levels_.num_levels() - 1);
+  SolveReport total;
+  PetscReal energy_gradient = PETSC_INFINITY;
+  bool limiting = false;
+  for (int k = 0; k < max_solves_; ++k) {
+    // The proximal centre x^k is the current state, on every level.
+    PetscCall(levels_.synchronize(time, u, zero_));
+    SolveReport solve;
+    PetscCall(solver_.solve(u, solve));
+    total.iterations += solve.iterations;
+    total.linear_iterations += solve.linear_iterations;
+    total.rmtr += solve.rmtr;
+    total.solves = k + 1;
+    total.gradient_tolerance = solve.gradient_tolerance;
+    total.force_scale = solve.force_scale;
+    total.reason = solve.reason;
+    total.converged = solve.converged;
+    PetscReal energy;
+    PetscCall(finest.objective_without(proximal_, u, &energy, gradient_));
+    PetscCall(VecNorm(gradient_, NORM_2, &energy_gradient));
+    total.energy = energy;
+    total.gradient_norm = energy_gradient;
+    if (!solve.converged || energy_gradient <= solve.gradient_tolerance) break;
+    // At the round-off floor another proximal solve cannot lower ‖∇E‖ either.
+    if (solve.reason == "CONVERGED_LIMITING_ACCURACY") {
+      limiting = energy_gradient <= kLimitingFactor * solve.gradient_tolerance;
+      break;
+    }
+  }
+  if (total.converged && !(energy_gradient <= total.gradient_tolerance) && !limiting) {
+    total.converged = false;
+    total.reason = total.solves < max_solves_ ? "DIVERGED_QUASISTATIC_ROUNDOFF"
+                                              : "DIVERGED_QUASISTATIC_MAX_SOLVES";
+  }
+  report = total;
+  PetscCall(VecZeroEntries(v));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell

@@ -1,0 +1,183 @@
+// The effects of a scene on a triangle mesh (see triangle_effect_builder.hpp).
+#include "mlshell/triangle/triangle_effect_builder.hpp"
+
+#include <algorithm>
+
+#include "mlshell/effect_builder.hpp"
+#include "mlshell/effects.hpp"
+#include "mlshell/triangle/triangle_effects.hpp"
+#include "mlshell/triangle/triangle_generators.hpp"
+#include "mlshell/triangle/triangle_selection.hpp"
+
+namespace mlshell {
+
+namespace {
+
+bool owns(const ParallelLayout& layout, int vertex) {
+  const int local = layout.local_of(vertex);
+  return local >= 0 && local < layout.num_owned_points();
+}
+
+/// Consistent nodal forces of a force per area f: f Ā_t / 3 to each vertex of each triangle.
+std::vector<double> area_force(const TriangleDiscretization& disc, const ParallelLayout& layout,
+                               const Vec3& f) {
+  std::vector<double> force(3 * layout.num_local_points(), 0.0);
+  const auto& X = disc.points();
+  for (int e : layout.local_elements()) {
+    const Triangle& t = disc.mesh().triangles[e];
+    const double area = 0.5 * (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]).norm();
+    for (int v : t)
+      for (int c = 0; c < 3; ++c) force[3 * layout.local_of(v) + c] += f[c] * area / 3.0;
+  }
+  return force;
+}
+
+/// Nodal weights of a selection: half the length of each selected boundary edge at a vertex,
+/// or h for a selected vertex on no selected boundary edge; each vertex on its owner rank.
+std::vector<std::pair<int, double>> vertex_weights(const TriangleDiscretization& disc,
+                                                   const ParallelLayout& layout,
+                                                   const std::vector<int>& vertices) {
+  std::vector<double> length(disc.num_points(), 0.0);
+  for (const auto& [a, b] : selected_boundary_edges(disc, vertices)) {
+    const double l = (disc.points()[b] - disc.points()[a]).norm();
+    length[a] += 0.5 * l;
+    length[b] += 0.5 * l;
+  }
+  std::vector<std::pair<int, double>> out;
+  for (int v : vertices)
+    if (owns(layout, v)) out.emplace_back(v, length[v] > 0.0 ? length[v] : disc.mesh_size());
+  return out;
+}
+
+std::vector<int> curve_vertices(const TriangleDiscretization& disc, const Where& where,
+                                const CageFrame& frame) {
+  return select_vertices(disc, std::get<CurveSelection>(where.selection), frame, where.text);
+}
+
+}  // namespace
+
+TriangleMesh build_triangle_mesh(const TriangleMeshSpec& s) {
+  using G = TriangleMeshSpec::Generator;
+  switch (s.generator) {
+    case G::kObj:
+      return read_obj_triangles(s.obj);
+    case G::kRectangle:
+      return s.edge_length ? make_unstructured_rectangle(s.size[0], s.size[1], *s.edge_length,
+                                                         s.origin[0], s.origin[1])
+                           : make_triangle_rectangle(s.size[0], s.size[1], s.faces[0], s.faces[1],
+                                                     s.origin[0], s.origin[1]);
+    case G::kCylinder:
+      return make_cylinder(s.radius, s.length, s.faces[0], s.faces[1]);
+    case G::kDome:
+      return make_spherical_cap(s.radius, s.opening_angle, s.rings);
+    case G::kSphere:
+      return make_sphere(s.radius, s.subdivisions);
+  }
+  throw MeshError("unknown mesh generator");
+}
+
+std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
+                                                     const TriangleDiscretization& disc,
+                                                     const ParallelLayout& layout,
+                                                     const CageFrame& frame) {
+  const auto& material = std::get<TriangleMaterial>(scene.material.model);
+  TriangleShellParameters params;
+  params.membrane = material.neo_hookean ? TriangleShellParameters::Membrane::kNeoHookean
+                                         : TriangleShellParameters::Membrane::kStVenantKirchhoff;
+  params.youngs_modulus = material.youngs_modulus;
+  params.poisson_ratio = material.poisson_ratio;
+  params.thickness = scene.material.thickness;
+  auto problem = std::make_unique<LevelProblem>(layout);
+  problem->add_term(std::make_unique<TriangleElasticTerm>(disc, layout, params));
+  const double rho = scene.material.density;  // area density ρτ
+  if (scene.time.quasistatic())
+    problem->add_term(std::make_unique<TriangleInertiaTerm>(disc, layout, rho,
+                                                            scene.time.proximal_step, "proximal"));
+  const double ramp_time = scene.time.dt * scene.time.steps;
+  const double h = disc.mesh_size();
+  Point3 lo = Point3::Constant(INFINITY), hi = Point3::Constant(-INFINITY);
+  for (const Point3& X : disc.points()) lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
+  const PenaltyScale scale{PenaltyScale::membrane_stiffness_of(scene.material),
+                           (hi - lo).maxCoeff()};
+  const double k = hinge_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
+  const int nlocal = layout.num_local_points();
+  for (size_t index = 0; index < scene.effects.size(); ++index) {
+    const Effect& effect = scene.effects[index];
+    const std::string name = effect_name(effect);
+    const size_t first_new = problem->terms().size();
+    try {
+      if (std::holds_alternative<InertiaEffect>(effect)) {
+        problem->add_term(std::make_unique<TriangleInertiaTerm>(disc, layout, rho, scene.time.dt));
+      } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
+        const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
+        problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
+      } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
+        problem->add_term(std::make_unique<LinearLoadTerm>(
+            name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
+      } else if (const auto* l = std::get_if<LineLoadEffect>(&effect)) {
+        std::vector<double> force(3 * nlocal, 0.0);
+        const auto vertices = curve_vertices(disc, l->where, frame);
+        for (const auto& [v, w] : vertex_weights(disc, layout, vertices))
+          for (int c = 0; c < 3; ++c)
+            force[3 * layout.local_of(v) + c] += w * l->force_per_length[c];
+        problem->add_term(
+            std::make_unique<LinearLoadTerm>(name, std::move(force), l->ramp ? ramp_time : 0.0));
+      } else if (const auto* p = std::get_if<PointLoadEffect>(&effect)) {
+        std::vector<double> force(3 * nlocal, 0.0);
+        const int v =
+            select_vertex(disc, std::get<PointSelection>(p->where.selection), frame, p->where.text);
+        if (owns(layout, v))
+          for (int c = 0; c < 3; ++c) force[3 * layout.local_of(v) + c] = p->force[c];
+        problem->add_term(
+            std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
+      } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
+        const double beta = penalty_parameter(d->penalty, d->sigma, h, scale);
+        std::vector<PenaltySample> samples;
+        if (std::holds_alternative<PointSelection>(d->where.selection)) {
+          const int v = select_vertex(disc, std::get<PointSelection>(d->where.selection), frame,
+                                      d->where.text);
+          if (owns(layout, v)) samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta, 0.0});
+        } else {
+          for (const auto& [v, w] :
+               vertex_weights(disc, layout, curve_vertices(disc, d->where, frame)))
+            samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0});
+        }
+        problem->add_term(std::make_unique<PenaltyTerm>(name, std::move(samples), d->components,
+                                                        motion_function(d->motion)));
+      } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
+        const double beta = penalty_parameter(c->penalty, c->sigma, h, scale);
+        const auto vertices = curve_vertices(disc, c->where, frame);
+        const auto edges = selected_boundary_edges(disc, vertices);
+        if (edges.empty())
+          throw SceneError("where '" + c->where.text +
+                           "': a clamp needs boundary edges (two neighbouring selected boundary "
+                           "vertices)");
+        std::vector<PenaltySample> samples;
+        for (const auto& [v, w] : vertex_weights(disc, layout, vertices))
+          samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0});
+        problem->add_term(std::make_unique<PenaltyTerm>(name, std::move(samples),
+                                                        std::array<bool, 3>{true, true, true},
+                                                        motion_function(c->motion)));
+        // The rotation: the shell's own bending stiffness (rotation_penalty scales it).
+        const double stiffness = c->rotation_penalty ? *c->rotation_penalty : k;
+        problem->add_term(std::make_unique<ClampHingeTerm>(name + "_rotation", disc, layout, edges,
+                                                           stiffness, motion_function(c->motion)));
+      } else if (const auto* p = std::get_if<PressureEffect>(&effect)) {
+        if (!disc.topology().closed())
+          throw SceneError("pressure needs a closed surface; this mesh has " +
+                           std::to_string(disc.topology().boundary_loops().size()) +
+                           " boundary loop(s)");
+        problem->add_term(
+            std::make_unique<PressureTerm>(disc, layout, p->pressure, p->ramp ? ramp_time : 0.0));
+      }
+    } catch (const SceneError& e) {
+      throw SceneError(scene.file.string() + ": effects[" + std::to_string(index) + "]." + name +
+                       ": " + e.what());
+    }
+    for (size_t t = first_new; t < problem->terms().size(); ++t)
+      problem->terms()[t]->set_effect_index(static_cast<int>(index));
+  }
+  return problem;
+}
+
+}  // namespace mlshell

@@ -1,0 +1,44 @@
+// Triangle-shell scenes for tests: a scene file written from YAML text, parsed, and run or
+// assembled on the finest (only) level.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <petscsys.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "mlshell/scene.hpp"
+#include "mlshell/triangle/triangle_effect_builder.hpp"
+#include "mlshell/triangle/triangle_levels.hpp"
+#include "physics_fixtures.hpp"
+
+namespace mlshell {
+
+/// Parses a scene from YAML text (written to a temporary file named after `name`).
+inline Scene triangle_scene(const std::string& name, const std::string& yaml) {
+  const auto file = std::filesystem::temp_directory_path() / ("mlshell_" + name + ".yaml");
+  std::ofstream(file) << yaml;
+  Scene scene = parse_scene(file);
+  std::filesystem::remove(file);
+  return scene;
+}
+
+/// The scene's problem on its triangle mesh, on `comm`.
+struct TriangleProblem {
+  std::unique_ptr<TriangleLevels> levels;
+  std::unique_ptr<LevelProblem> problem;
+  TriangleProblem(const Scene& scene, MPI_Comm comm) {
+    levels = std::make_unique<TriangleLevels>(comm, build_triangle_mesh(*scene.geometry.mesh));
+    problem = build_triangle_problem(scene, levels->discretization(0), levels->layout(0),
+                                     CageFrame::from(scene.geometry));
+    problem->begin_step(scene.time.dt, nullptr);
+  }
+  const TriangleDiscretization& disc() const { return levels->discretization(0); }
+  const ParallelLayout& layout() const { return levels->layout(0); }
+};
+
+}  // namespace mlshell

@@ -1,0 +1,215 @@
+// Triangle shells assembled from scenes (paper 2 §3): every effect's gradient and Hessian
+// against finite differences of the assembled energy, zero energy at rest for flat and curved
+// rest shapes, a uniform stretch against the closed-form neo-Hookean energy, and the
+// quasistatic integrator's equilibrium.
+#include <cmath>
+
+#include "mlshell/effects.hpp"
+#include "mlshell/triangle/triangle_effects.hpp"
+#include "triangle_fixtures.hpp"
+
+using namespace mlshell;
+
+namespace {
+
+const char* kMaterial =
+    "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, thickness: 0.01, "
+    "volume_density: 500}\n";
+
+/// f, ∇f and H·d of one term (alone) at u, on one rank.
+struct TermCheck {
+  double f;
+  std::vector<double> g, Hd;
+};
+
+TermCheck evaluate_term(TriangleProblem& tp, const EnergyTerm& term, const std::vector<double>& u,
+                        const std::vector<double>& d) {
+  TermCheck out;
+  CompensatedSum e;
+  out.g.assign(u.size(), 0.0);
+  PetscCallAbort(PETSC_COMM_SELF, term.add(u, e, &out.g, nullptr));
+  out.f = e.value();
+  Mat H;
+  PetscCallAbort(PETSC_COMM_SELF, tp.problem->create_matrix(&H));
+  // The pattern the whole problem's Hessian has (the elastic term fills the element stencils),
+  // into which constant Hessians are added; then only this term's values.
+  Vec uv;
+  PetscCallAbort(PETSC_COMM_SELF, MatCreateVecs(H, &uv, nullptr));
+  PetscCallAbort(PETSC_COMM_SELF, tp.problem->hessian(uv, H));
+  PetscCallAbort(PETSC_COMM_SELF, VecDestroy(&uv));
+  PetscCallAbort(PETSC_COMM_SELF, MatZeroEntries(H));
+  CompensatedSum ignored;
+  PetscCallAbort(PETSC_COMM_SELF, term.add(u, ignored, nullptr, H));
+  PetscCallAbort(PETSC_COMM_SELF, MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
+  PetscCallAbort(PETSC_COMM_SELF, MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
+  PetscCallAbort(PETSC_COMM_SELF, term.add_constant_hessian(H));
+  Vec dv, hd;
+  PetscCallAbort(PETSC_COMM_SELF, MatCreateVecs(H, &dv, &hd));
+  PetscScalar* a;
+  VecGetArray(dv, &a);
+  std::copy(d.begin(), d.end(), a);
+  VecRestoreArray(dv, &a);
+  MatMult(H, dv, hd);
+  const PetscScalar* r;
+  VecGetArrayRead(hd, &r);
+  out.Hd.assign(r, r + d.size());
+  VecRestoreArrayRead(hd, &r);
+  VecDestroy(&dv);
+  VecDestroy(&hd);
+  MatDestroy(&H);
+  return out;
+}
+
+double norm(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
+/// Central differences of f along d (gradient) and of ∇f along d (Hessian), each compared
+/// with the term's own scale.
+void expect_derivatives(TriangleProblem& tp, const EnergyTerm& term, const std::vector<double>& u,
+                        double step, const std::string& what) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> r(-1.0, 1.0);
+  std::vector<double> d(u.size());
+  for (double& x : d) x = r(rng);
+  const TermCheck at = evaluate_term(tp, term, u, d);
+  std::vector<double> up(u), um(u);
+  for (size_t i = 0; i < u.size(); ++i) up[i] += step * d[i], um[i] -= step * d[i];
+  const TermCheck p = evaluate_term(tp, term, up, d), m = evaluate_term(tp, term, um, d);
+  double gd = 0;
+  for (size_t i = 0; i < u.size(); ++i) gd += at.g[i] * d[i];
+  const double fd = (p.f - m.f) / (2 * step);
+  EXPECT_NEAR(fd, gd, 1e-6 * (std::abs(gd) + norm(at.g) * norm(d)) + 1e-300) << what;
+  std::vector<double> hd_fd(u.size()), diff(u.size());
+  for (size_t i = 0; i < u.size(); ++i) {
+    hd_fd[i] = (p.g[i] - m.g[i]) / (2 * step);
+    diff[i] = hd_fd[i] - at.Hd[i];
+  }
+  EXPECT_LE(norm(diff), 1e-5 * norm(at.Hd) + 1e-300) << what << ": |H d| = " << norm(at.Hd);
+  EXPECT_GT(norm(at.Hd) + std::abs(gd), 0.0) << what << ": the check must see the term";
+}
+
+std::vector<double> random_displacement(size_t n, double amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> r(-amplitude, amplitude);
+  std::vector<double> u(n);
+  for (double& x : u) x = r(rng);
+  return u;
+}
+
+}  // namespace
+
+TEST(TriangleShell, EveryEffectMatchesFiniteDifferencesOnItsOwnScale) {
+  const Scene scene = triangle_scene(
+      "fd",
+      std::string("geometry: {mesh: {generator: rectangle, size: [1, 0.5], faces: [4, 3]}}\n") +
+          kMaterial +
+          "effects:\n"
+          "  - inertia\n"
+          "  - gravity: [0, 0, -9.81]\n"
+          "  - surface_load: {force_per_area: [0, 1, 2]}\n"
+          "  - line_load: {where: boundary(right), force_per_length: [0, 0, 1]}\n"
+          "  - point_load: {where: corner(top-right), force: [1, 0, 0]}\n"
+          "  - dirichlet: {where: boundary(left), motion: {translate: [0, 0, 0.1], "
+          "over: [0, 1]}}\n"
+          "  - clamp: {where: boundary(bottom), motion: {translate: [0, 0.05, 0.02], "
+          "over: [0, 1]}}\n"
+          "time: {dt: 0.5, steps: 2}\n");
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  std::vector<double> pred = random_displacement(3 * tp.disc().num_points(), 0.02, 5);
+  StepStart start{0.5, &pred};
+  for (const auto& t : tp.problem->terms()) t->begin_step(start);
+  const auto u = random_displacement(3 * tp.disc().num_points(), 0.05, 3);
+  for (const auto& t : tp.problem->terms()) expect_derivatives(tp, *t, u, 1e-6, t->name());
+}
+
+TEST(TriangleShell, StVenantKirchhoffMembraneMatchesFiniteDifferences) {
+  const Scene scene = triangle_scene(
+      "fd_svk",
+      "geometry: {mesh: {generator: dome, radius: 1, opening_angle: 1.2, rings: 4}}\n"
+      "material: {model: st-venant-kirchhoff, youngs_modulus: 1.0e6, poisson_ratio: 0.3, "
+      "thickness: 0.01, volume_density: 500}\n"
+      "time: {dt: 1, steps: 1}\n");
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  const auto u = random_displacement(3 * tp.disc().num_points(), 0.05, 9);
+  expect_derivatives(tp, *tp.problem->terms()[0], u, 1e-6, "elastic (svk)");
+}
+
+TEST(TriangleShell, PressureMatchesFiniteDifferencesAndTheEnclosedVolume) {
+  const Scene scene = triangle_scene(
+      "fd_pressure",
+      std::string("geometry: {mesh: {generator: sphere, radius: 0.5, subdivisions: 2}}\n") +
+          kMaterial + "effects:\n  - pressure: {pressure: 1000}\ntime: {dt: 1, steps: 1}\n");
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  const EnergyTerm& pressure = *tp.problem->terms()[1];
+  ASSERT_EQ(pressure.name(), "pressure");
+  const auto u = random_displacement(3 * tp.disc().num_points(), 0.02, 4);
+  expect_derivatives(tp, pressure, u, 1e-6, "pressure");
+  // A uniform scaling x = s X changes the volume by (s³ − 1) V: the energy is −p (s³ − 1) V.
+  std::vector<double> scale(3 * tp.disc().num_points());
+  for (int i = 0; i < tp.disc().num_points(); ++i)
+    for (int c = 0; c < 3; ++c) scale[3 * i + c] = 0.1 * tp.disc().points()[i][c];
+  CompensatedSum e;
+  PetscCallAbort(PETSC_COMM_SELF, pressure.add(scale, e, nullptr, nullptr));
+  double volume = 0.0;  // of the inscribed polyhedron
+  for (const Triangle& t : tp.disc().mesh().triangles) {
+    const auto& X = tp.disc().points();
+    volume += X[t[0]].dot(X[t[1]].cross(X[t[2]])) / 6.0;
+  }
+  EXPECT_NEAR(e.value(), -1000.0 * (1.1 * 1.1 * 1.1 - 1.0) * volume, 1e-10 * 1000.0 * volume);
+}
+
+TEST(TriangleShell, RestShapesAreStressFree) {
+  for (const std::string geometry :
+       {"{generator: rectangle, size: [1, 1], faces: [5, 5]}",
+        "{generator: rectangle, size: [1, 1], edge_length: 0.2}",
+        "{generator: dome, radius: 1, opening_angle: 1.5, rings: 6}",
+        "{generator: cylinder, radius: 0.3, length: 1, faces: [12, 4]}",
+        "{generator: sphere, radius: 1, subdivisions: 2}"}) {
+    const Scene scene = triangle_scene(
+        "rest", "geometry: {mesh: " + geometry + "}\n" + kMaterial + "time: {dt: 1, steps: 1}\n");
+    TriangleProblem tp(scene, PETSC_COMM_SELF);
+    const std::vector<double> zero(3 * tp.disc().num_points(), 0.0);
+    // A rigid rotation and translation of the rest shape is stress-free too.
+    std::vector<double> rigid(zero.size());
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+    for (int i = 0; i < tp.disc().num_points(); ++i) {
+      const Point3& X = tp.disc().points()[i];
+      const Eigen::Vector3d x = R * X + Eigen::Vector3d(0.3, -0.2, 0.5);
+      for (int c = 0; c < 3; ++c) rigid[3 * i + c] = x[c] - X[c];
+    }
+    for (const std::vector<double>* u : {&zero, const_cast<const std::vector<double>*>(&rigid)}) {
+      CompensatedSum e;
+      std::vector<double> g(zero.size(), 0.0);
+      PetscCallAbort(PETSC_COMM_SELF, tp.problem->terms()[0]->add(*u, e, &g, nullptr));
+      // Scale: the membrane energy of a 1 % stretch of the whole surface.
+      EXPECT_LE(std::abs(e.value()), 1e-9 * 1e6 * 0.01 * 1e-4) << geometry;
+      EXPECT_LE(norm(g), 1e-6 * 1e6 * 0.01 * 1e-2) << geometry;
+    }
+  }
+}
+
+TEST(TriangleShell, UniformStretchGivesTheClosedFormNeoHookeanEnergy) {
+  const Scene scene = triangle_scene(
+      "stretch",
+      std::string("geometry: {mesh: {generator: rectangle, size: [2, 1], edge_length: 0.25}}\n") +
+          kMaterial + "time: {dt: 1, steps: 1}\n");
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  const double s1 = 1.2, s2 = 0.9;
+  std::vector<double> u(3 * tp.disc().num_points(), 0.0);
+  for (int i = 0; i < tp.disc().num_points(); ++i) {
+    u[3 * i] = (s1 - 1.0) * tp.disc().points()[i][0];
+    u[3 * i + 1] = (s2 - 1.0) * tp.disc().points()[i][1];
+  }
+  CompensatedSum e;
+  PetscCallAbort(PETSC_COMM_SELF, tp.problem->terms()[0]->add(u, e, nullptr, nullptr));
+  const double E = 1e6, nu = 0.3, tau = 0.01, area = 2.0;
+  const double mu = E / (2 * (1 + nu)), lambda = E * nu / (1 - nu * nu);  // plane stress
+  const double J = s1 * s2;
+  const double psi =
+      mu / 2 * (s1 * s1 + s2 * s2 - 2 - 2 * std::log(J)) + lambda / 2 * std::log(J) * std::log(J);
+  EXPECT_NEAR(e.value(), tau * area * psi, 1e-10 * tau * area * psi);
+}
