@@ -193,6 +193,10 @@ PetscErrorCode StepSolver::solve_snes(Vec u, SolveReport& report) {
   PetscReal f;
   PetscCall(problem_.objective(u, &f, nullptr));
   PetscCall(SNESGetFunctionNorm(snes_, &report.gradient_norm));
+  PetscReal atol, rtol, stol;
+  PetscInt maxit, maxf;
+  PetscCall(SNESGetTolerances(snes_, &atol, &rtol, &stol, &maxit, &maxf));
+  report.gradient_tolerance = atol;  // what -snes_atol promises of ‖∇f‖
   report.converged = reason > 0;
   report.reason = SNESConvergedReasons[reason];
   report.iterations = static_cast<int>(its);

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "mlshell/trust_region.hpp"
+#include "tao_registration.hpp"
 
 namespace mlshell {
 
@@ -121,17 +122,8 @@ PetscErrorCode create(Tao tao, bool single_step) {
   tao->ops->setfromoptions = set_from_options;
   tao->ops->view = view;
   tao->ops->destroy = destroy;
-  const char* prefix = nullptr;
-  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
-  PetscCall(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(tao)), &ctx->ksp));
-  PetscCall(KSPSetOptionsPrefix(ctx->ksp, prefix));
   PetscCall(
-      KSPAppendOptionsPrefix(ctx->ksp, single_step ? "tao_linearized_" : "tao_dampednewton_"));
-  PetscCall(KSPSetType(ctx->ksp, KSPPREONLY));
-  PC pc;
-  PetscCall(KSPGetPC(ctx->ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+      create_direct_ksp(tao, single_step ? "tao_linearized_" : "tao_dampednewton_", &ctx->ksp));
   PetscFunctionReturn(0);
 }
 
@@ -139,6 +131,21 @@ PetscErrorCode create_damped(Tao tao) { return create(tao, false); }
 PetscErrorCode create_linearized(Tao tao) { return create(tao, true); }
 
 }  // namespace
+
+PetscErrorCode create_direct_ksp(Tao tao, const char* prefix, KSP* ksp) {
+  PetscFunctionBeginUser;
+  const char* tao_prefix = nullptr;
+  PetscCall(TaoGetOptionsPrefix(tao, &tao_prefix));
+  PetscCall(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(tao)), ksp));
+  PetscCall(KSPSetOptionsPrefix(*ksp, tao_prefix));
+  PetscCall(KSPAppendOptionsPrefix(*ksp, prefix));
+  PetscCall(KSPSetType(*ksp, KSPPREONLY));
+  PC pc;
+  PetscCall(KSPGetPC(*ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode register_newton_baseline_tao_types() {
   static bool registered = false;

@@ -9,7 +9,10 @@
 // A singular or indefinite H (a free rigid motion, pressure terms) is shifted, H + τI with τ
 // from 1e-8·max|diag H| growing ×100, until the solve succeeds and p descends.
 // Stopping: TAO's tolerances on ‖∇f‖. When the line search finds no decrease above the rounding
-// error of f (Objective::evaluation_error), the solve ends at the limiting accuracy
+// error of f (Objective::evaluation_error), or 20 steps in a row change f by no more than that
+// noise while ‖∇f‖ falls by less than 10 % (projected Hessians of compressed, wrinkling
+// membranes converge linearly: slow progress is still progress), the solve ends at the limiting
+// accuracy
 // (CONVERGED_LIMITING_ACCURACY) if ‖∇f‖ is within -tao_pnewton_limiting_factor (100) of the
 // gradient tolerance, and with DIVERGED_LS_FAILURE otherwise.
 #include <petsc/private/taoimpl.h>
@@ -19,6 +22,7 @@
 
 #include "mlshell/trust_region.hpp"
 #include "tao_objective.hpp"
+#include "tao_registration.hpp"
 
 namespace mlshell {
 
@@ -30,6 +34,8 @@ struct ProjectedNewtonContext {
   Objective* source = nullptr;  // for step limits, rounding errors and accepted iterates
   PetscReal c1 = 1e-4, limiting_factor = 100.0;
   PetscInt max_halvings = 60;
+  static constexpr int kNoiseSteps = 20;         // steps in the noise of f ...
+  static constexpr double kNoiseProgress = 0.9;  // ... without ‖∇f‖ falling below this × its start
   bool limiting = false;
 };
 
@@ -95,6 +101,16 @@ PetscErrorCode solve(Tao tao) {
   PetscCall(TaoLogConvergenceHistory(tao, f, gnorm, 0.0, tao->ksp_its));
   PetscCall(TaoMonitor(tao, tao->niter, f, gnorm, 0.0, 0.0));
   PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
+  int noise_steps = 0;
+  PetscReal noise_start_gnorm = 0.0;
+  const auto end_at_floor = [&]() -> PetscErrorCode {
+    PetscReal gatol, grtol, gttol;
+    PetscFunctionBeginUser;
+    PetscCall(TaoGetTolerances(tao, &gatol, &grtol, &gttol));
+    c->limiting = gnorm <= c->limiting_factor * gatol;
+    tao->reason = c->limiting ? TAO_CONVERGED_USER : TAO_DIVERGED_LS_FAILURE;
+    PetscFunctionReturn(0);
+  };
   while (tao->reason == TAO_CONTINUE_ITERATING) {
     if (!std::isfinite(f) || !std::isfinite(gnorm)) {
       tao->reason = TAO_DIVERGED_NAN;
@@ -134,12 +150,10 @@ PetscErrorCode solve(Tao tao) {
       if (alpha * std::abs(slope) < noise) break;  // the model decrease is below the noise
     }
     if (!accepted) {
-      PetscReal gatol, grtol, gttol;
-      PetscCall(TaoGetTolerances(tao, &gatol, &grtol, &gttol));
-      c->limiting = gnorm <= c->limiting_factor * gatol;
-      tao->reason = c->limiting ? TAO_CONVERGED_USER : TAO_DIVERGED_LS_FAILURE;
+      PetscCall(end_at_floor());
       break;
     }
+    const bool in_noise = std::abs(ft - f) <= 10.0 * noise;
     PetscCall(VecCopy(c->trial, x));
     PetscCall(VecCopy(c->trial_gradient, g));
     f = ft;
@@ -153,6 +167,14 @@ PetscErrorCode solve(Tao tao) {
     PetscCall(TaoLogConvergenceHistory(tao, f, gnorm, 0.0, tao->ksp_its));
     PetscCall(TaoMonitor(tao, tao->niter, f, gnorm, 0.0, alpha));
     PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
+    if (tao->reason != TAO_CONTINUE_ITERATING) break;
+    if (!in_noise || noise_steps == 0 ||
+        gnorm <= ProjectedNewtonContext::kNoiseProgress * noise_start_gnorm) {
+      noise_steps = in_noise ? 1 : 0;
+      noise_start_gnorm = gnorm;
+    } else if (++noise_steps >= ProjectedNewtonContext::kNoiseSteps) {
+      PetscCall(end_at_floor());
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -208,16 +230,7 @@ PetscErrorCode create(Tao tao) {
   tao->ops->setfromoptions = set_from_options;
   tao->ops->view = view;
   tao->ops->destroy = destroy;
-  const char* prefix = nullptr;
-  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
-  PetscCall(KSPCreate(PetscObjectComm(reinterpret_cast<PetscObject>(tao)), &c->ksp));
-  PetscCall(KSPSetOptionsPrefix(c->ksp, prefix));
-  PetscCall(KSPAppendOptionsPrefix(c->ksp, "tao_pnewton_"));
-  PetscCall(KSPSetType(c->ksp, KSPPREONLY));
-  PC pc;
-  PetscCall(KSPGetPC(c->ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(create_direct_ksp(tao, "tao_pnewton_", &c->ksp));
   PetscFunctionReturn(0);
 }
 

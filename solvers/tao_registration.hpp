@@ -16,6 +16,9 @@ PetscErrorCode rmtr_set_error_source(Tao tao, Objective* source);
 /// tao_projected_newton.cpp: the "pnewton" type's objective (step limits, rounding errors,
 /// accepted iterates) and whether its last solve ended at the limiting accuracy.
 PetscErrorCode projected_newton_set_source(Tao tao, Objective* source);
+/// tao_newton_baselines.cpp: a direct solver for Newton directions, options prefix the Tao's
+/// plus `prefix` (e.g. "tao_pnewton_"), KSPPREONLY with an LU factorisation by MUMPS.
+PetscErrorCode create_direct_ksp(Tao tao, const char* prefix, KSP* ksp);
 bool projected_newton_reached_limiting_accuracy(Tao tao);
 
 /// Raises PETSC_ERR_ARG_WRONG unless `tao` is of the given type (for type-specific accessors).

@@ -37,6 +37,12 @@ struct PenaltyScale {
   static double membrane_stiffness_of(const MaterialSpec& material);
 };
 
+/// Calls `build(effect, name)` for each of the scene's effects in order, which adds the effect's
+/// terms to `problem`; tags them with the effect's index (EnergyTerm::effect_index) and prefixes
+/// a SceneError it throws with the scene entry, `<file>: effects[i].<name><where>: `.
+void add_effect_terms(const Scene& scene, LevelProblem& problem, const std::string& where,
+                      const std::function<void(const Effect&, const std::string&)>& build);
+
 /// d(t) of a Dirichlet condition's or clamp's motion (zero without one).
 std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motion>& motion);
 

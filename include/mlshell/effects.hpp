@@ -112,8 +112,26 @@ class PenaltyTerm final : public EnergyTerm {
                      std::vector<double>* grad, Mat hess) const override;
   /// max over this rank's samples of |P(u(ξ) − d(t))| (m): how far the penalty lets go.
   double max_violation(const std::vector<double>& u) const;
+  /// Augmented-Lagrangian mode (method of multipliers): the energy becomes
+  /// Σ (s w/2 |P c|² − λ·P c) with c = u(ξ) − d(t), w = β × weight, multipliers λ per sample and
+  /// a penalty factor s (1 at first), updated after each solve until max |P c| ≤ tolerance (m):
+  /// λ ← λ − s w P c, and s ← 10 s when the violation fell by less than 4× since the last update.
+  void enable_augmented_lagrangian(double tolerance) {
+    tolerance_ = tolerance;
+    multipliers_.assign(samples_.size(), Eigen::Vector3d::Zero());
+  }
+  bool has_multipliers() const override { return tolerance_ > 0.0; }
+  double constraint_tolerance() const override { return tolerance_; }
+  void update_multipliers(const std::vector<double>& u, double violation) override;
 
  private:
+  /// P(u(ξ_s) − d(t)) of sample s.
+  Eigen::Vector3d residual(const PenaltySample& s, const std::vector<double>& u,
+                           const Eigen::Vector3d& d) const;
+  double tolerance_ = 0.0;
+  std::vector<Eigen::Vector3d> multipliers_;  // λ_s, augmented-Lagrangian mode
+  double scale_ = 1.0;                        // s
+  double last_violation_ = INFINITY;          // at the last update
   std::vector<PenaltySample> samples_;
   std::array<bool, 3> components_;
   std::function<Eigen::Vector3d(double)> motion_;

@@ -86,6 +86,13 @@ class EnergyTerm {
   /// Point pairs (natural indices) that the term's Hessian couples beyond the element stencils
   /// (contact pairs); the level's Hessian is preallocated for them.
   virtual void extend_sparsity(std::vector<std::array<int, 2>>& pairs) const {}
+  /// Constraints solved by an augmented Lagrangian (an outer loop around the solve): whether the
+  /// term has one, its violation at u (local; the same measure as its tolerance) and its
+  /// tolerance, and the first-order multiplier update λ ← λ − β c(u) given the violation over
+  /// all ranks.
+  virtual bool has_multipliers() const { return false; }
+  virtual double constraint_tolerance() const { return 0.0; }
+  virtual void update_multipliers(const std::vector<double>& u, double violation) {}
   /// Per-element output fields (e.g. a triangle's membrane strain): their names, and their
   /// values on this rank's elements (ParallelLayout::local_elements() order) at u (local).
   virtual std::vector<std::string> face_field_names() const { return {}; }

@@ -64,6 +64,10 @@ class LevelProblem final : public Objective {
   /// The largest violation |P(u − d(t))| (m) of each penalty term at u, in the order of terms()
   /// (0 for terms that are not penalties), over all ranks.
   PetscErrorCode constraint_violations(Vec u, std::vector<double>& violations);
+  /// Augmented-Lagrangian outer step at u: *met is whether every term with multipliers has its
+  /// violation within its tolerance (all ranks); the multipliers of those that do not are
+  /// updated. *met is true when no term has multipliers.
+  PetscErrorCode update_multipliers(Vec u, bool* met);
   /// Where the material points of the elastic term lie in the material model at u (all ranks).
   PetscErrorCode material_report(Vec u, MaterialReport& report);
   /// Energy of each term, the total f(u) and ‖∇f(u)‖₂ at u (for reports).

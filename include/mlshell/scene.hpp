@@ -208,6 +208,8 @@ struct DirichletEffect {
   std::optional<Motion> motion;
   double sigma = 5.0;             ///< > 0
   std::optional<double> penalty;  ///< explicit beta > 0 (overrides sigma)
+  /// Augmented-Lagrangian mode: multipliers drive max |P(u − d)| below this (m, > 0).
+  std::optional<double> tolerance;
 };
 
 /// Clamp: displacement and rotation (the slope across the boundary) held by penalties.

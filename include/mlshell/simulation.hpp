@@ -111,6 +111,7 @@ class Simulation {
   double wall_start_ = 0.0;
   long total_iterations_ = 0;
   long total_linear_iterations_ = 0;
+  long total_solves_ = 0;    ///< minimisations (quasistatic: proximal solves)
   double solve_time_ = 0.0;  ///< seconds in the steps' solves (no setup, no output)
   RmtrStatistics rmtr_totals_;
   MaterialReport material_final_;  // the last step's solution

@@ -33,7 +33,8 @@ struct SolveReport {
   std::string reason;  ///< TAO's converged reason, e.g. CONVERGED_GATOL
   int iterations = 0;
   int linear_iterations = 0;
-  int solves = 1;  ///< minimisations in the step (quasistatic: proximal solves)
+  int solves = 1;              ///< minimisations in the step (quasistatic: proximal solves)
+  int multiplier_updates = 0;  ///< augmented-Lagrangian outer iterations in the step
   double energy = 0.0;
   double gradient_norm = 0.0;
   double gradient_tolerance = 0.0;  ///< max(-tao_gatol, -mlshell_force_rtol × ‖f_ext‖)

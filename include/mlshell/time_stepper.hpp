@@ -8,7 +8,11 @@
 //                                     last step's state until ‖∇E(x)‖ ≤ ε; no velocity
 //
 // Both move every level of the problem to the step's time (boundary motion, load ramps) and
-// give each level its predictor (projected from the finest level) before each solve.
+// give each level its predictor (projected from the finest level) before each solve. Terms with
+// augmented-Lagrangian multipliers (dirichlet with a tolerance) get an outer loop: once a solve
+// is in equilibrium, multipliers whose constraint is violated by more than its tolerance are
+// updated and the step is solved again (at most 50 times for implicit Euler; within the
+// proximal solves for quasistatics).
 #pragma once
 
 #include <petscvec.h>

@@ -195,6 +195,23 @@ PetscErrorCode LevelProblem::constraint_violations(Vec u, std::vector<double>& v
       MPI_MAX, violations);
 }
 
+PetscErrorCode LevelProblem::update_multipliers(Vec u, bool* met) {
+  PetscFunctionBeginUser;
+  *met = true;
+  if (std::none_of(terms_.begin(), terms_.end(),
+                   [](const auto& t) { return t->has_multipliers(); }))
+    PetscFunctionReturn(0);
+  std::vector<double> violations;
+  PetscCall(constraint_violations(u, violations));  // leaves u in u_local_
+  for (size_t i = 0; i < terms_.size(); ++i) {
+    if (!terms_[i]->has_multipliers() || violations[i] <= terms_[i]->constraint_tolerance())
+      continue;
+    *met = false;
+    terms_[i]->update_multipliers(u_local_, violations[i]);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LevelProblem::material_report(Vec u, MaterialReport& report) {
   PetscFunctionBeginUser;
   PetscCall(layout_.to_local(u, u_local_));

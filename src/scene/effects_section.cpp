@@ -95,7 +95,7 @@ Effect read_point_load(const Field& params, const GeometrySpec& geometry) {
 }
 
 Effect read_dirichlet(const Field& params, const GeometrySpec& geometry) {
-  params.expect_keys({"where", "components", "motion", "sigma", "penalty"});
+  params.expect_keys({"where", "components", "motion", "sigma", "penalty", "tolerance"});
   DirichletEffect effect;
   effect.where = read_where(params.require("where", "a selection"), SelectionUse::CurveOrPoint,
                             "dirichlet", geometry);
@@ -105,6 +105,7 @@ Effect read_dirichlet(const Field& params, const GeometrySpec& geometry) {
   effect.motion = optional_motion(params);
   effect.sigma = optional_positive(params, "sigma").value_or(effect.sigma);
   effect.penalty = optional_positive(params, "penalty");
+  effect.tolerance = optional_positive(params, "tolerance");
   return effect;
 }
 

@@ -59,7 +59,7 @@ effects:                     optional list; only the listed effects are simulate
   - line_load: {where: CURVE, force_per_length: [fx, fy, fz], ramp: bool} N/m
   - point_load: {where: POINT, force: [fx, fy, fz], ramp: bool}          N
   - dirichlet: {where: CURVE or POINT, components: [x, y, z], motion: MOTION, sigma: s,
-                penalty: beta}
+                penalty: beta, tolerance: t}   t (m, > 0): augmented Lagrangian to |u - d| <= t
   - clamp: {where: CURVE, motion: MOTION, sigma: s, penalty: beta, rotation_penalty: b}
   - pressure: {pressure: p, ramp: bool}   Pa; work p (V(x) - V(X)) of the enclosed volume of a
                              closed triangle mesh (outward normals: p > 0 inflates)

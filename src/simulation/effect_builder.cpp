@@ -124,6 +124,23 @@ SurfacePoint resolve_point(const SubdivisionDiscretization& disc, const Where& w
 
 }  // namespace
 
+void add_effect_terms(const Scene& scene, LevelProblem& problem, const std::string& where,
+                      const std::function<void(const Effect&, const std::string&)>& build) {
+  for (size_t index = 0; index < scene.effects.size(); ++index) {
+    const Effect& effect = scene.effects[index];
+    const std::string name = effect_name(effect);
+    const size_t first_new = problem.terms().size();
+    try {
+      build(effect, name);
+    } catch (const SceneError& e) {
+      throw SceneError(scene.file.string() + ": effects[" + std::to_string(index) + "]." + name +
+                       where + ": " + e.what());
+    }
+    for (size_t t = first_new; t < problem.terms().size(); ++t)
+      problem.terms()[t]->set_effect_index(static_cast<int>(index));
+  }
+}
+
 std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motion>& m) {
   if (!m) return [](double) { return Eigen::Vector3d::Zero(); };
   Motion motion = *m;
@@ -176,61 +193,52 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
   if (scene.time.quasistatic())
     problem->add_term(std::make_unique<InertiaTerm>(disc, layout, scene.material.density,
                                                     scene.time.proximal_step, "proximal"));
-  for (size_t index = 0; index < scene.effects.size(); ++index) {
-    const Effect& effect = scene.effects[index];
-    const std::string name = effect_name(effect);
-    const size_t first_new = problem->terms().size();
-    try {
-      if (std::holds_alternative<InertiaEffect>(effect)) {
-        problem->add_term(
-            std::make_unique<InertiaTerm>(disc, layout, scene.material.density, scene.time.dt));
-      } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
-        const double rho = scene.material.density;
-        const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
-        problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
-      } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
-        problem->add_term(std::make_unique<LinearLoadTerm>(
-            name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
-      } else if (const auto* l = std::get_if<LineLoadEffect>(&effect)) {
-        std::vector<double> force(3 * nlocal, 0.0);
-        const auto edges =
-            select_curve(disc, std::get<CurveSelection>(l->where.selection), frame, l->where.text);
-        for (const EdgeSample& s : edge_samples(disc, layout, edges))
-          for (int i = 0; i < s.point.basis.size(); ++i)
-            for (int c = 0; c < 3; ++c)
-              force[3 * s.point.nodes[i] + c] +=
-                  s.weight * s.point.basis.w[kValue][i] * l->force_per_length[c];
-        problem->add_term(
-            std::make_unique<LinearLoadTerm>(name, std::move(force), l->ramp ? ramp_time : 0.0));
-      } else if (const auto* p = std::get_if<PointLoadEffect>(&effect)) {
-        std::vector<double> force(3 * nlocal, 0.0);
-        const SurfacePoint sp = resolve_point(disc, p->where, frame);
-        if (layout.face_owner(sp.face) == layout.rank()) {
-          const LocalPoint lp = local_point(disc, layout, sp);
-          for (int i = 0; i < lp.basis.size(); ++i)
-            for (int c = 0; c < 3; ++c)
-              force[3 * lp.nodes[i] + c] += lp.basis.w[kValue][i] * p->force[c];
-        }
-        problem->add_term(
-            std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
-      } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
-        const double beta = penalty_parameter(d->penalty, d->sigma, h, scale);
-        problem->add_term(penalty_term(name, disc, layout, d->where, frame, beta, 0.0, false,
-                                       d->components, d->motion));
-      } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
-        const double beta = penalty_parameter(c->penalty, c->sigma, h, scale);
-        const double beta_rot = c->rotation_penalty ? *c->rotation_penalty : beta * h * h;
-        problem->add_term(penalty_term(name, disc, layout, c->where, frame, beta, beta_rot, true,
-                                       {true, true, true}, c->motion));
+  add_effect_terms(scene, *problem, ".where", [&](const Effect& effect, const std::string& name) {
+    if (std::holds_alternative<InertiaEffect>(effect)) {
+      problem->add_term(
+          std::make_unique<InertiaTerm>(disc, layout, scene.material.density, scene.time.dt));
+    } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
+      const double rho = scene.material.density;
+      const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
+      problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
+    } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
+      problem->add_term(std::make_unique<LinearLoadTerm>(
+          name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
+    } else if (const auto* l = std::get_if<LineLoadEffect>(&effect)) {
+      std::vector<double> force(3 * nlocal, 0.0);
+      const auto edges =
+          select_curve(disc, std::get<CurveSelection>(l->where.selection), frame, l->where.text);
+      for (const EdgeSample& s : edge_samples(disc, layout, edges))
+        for (int i = 0; i < s.point.basis.size(); ++i)
+          for (int c = 0; c < 3; ++c)
+            force[3 * s.point.nodes[i] + c] +=
+                s.weight * s.point.basis.w[kValue][i] * l->force_per_length[c];
+      problem->add_term(
+          std::make_unique<LinearLoadTerm>(name, std::move(force), l->ramp ? ramp_time : 0.0));
+    } else if (const auto* p = std::get_if<PointLoadEffect>(&effect)) {
+      std::vector<double> force(3 * nlocal, 0.0);
+      const SurfacePoint sp = resolve_point(disc, p->where, frame);
+      if (layout.face_owner(sp.face) == layout.rank()) {
+        const LocalPoint lp = local_point(disc, layout, sp);
+        for (int i = 0; i < lp.basis.size(); ++i)
+          for (int c = 0; c < 3; ++c)
+            force[3 * lp.nodes[i] + c] += lp.basis.w[kValue][i] * p->force[c];
       }
-    } catch (const SceneError& e) {
-      // Selections are resolved here, on the mesh: say which scene entry they came from.
-      throw SceneError(scene.file.string() + ": effects[" + std::to_string(index) + "]." + name +
-                       ".where: " + e.what());
+      problem->add_term(
+          std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
+    } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
+      const double beta = penalty_parameter(d->penalty, d->sigma, h, scale);
+      auto term = penalty_term(name, disc, layout, d->where, frame, beta, 0.0, false, d->components,
+                               d->motion);
+      if (d->tolerance) static_cast<PenaltyTerm&>(*term).enable_augmented_lagrangian(*d->tolerance);
+      problem->add_term(std::move(term));
+    } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
+      const double beta = penalty_parameter(c->penalty, c->sigma, h, scale);
+      const double beta_rot = c->rotation_penalty ? *c->rotation_penalty : beta * h * h;
+      problem->add_term(penalty_term(name, disc, layout, c->where, frame, beta, beta_rot, true,
+                                     {true, true, true}, c->motion));
     }
-    for (size_t t = first_new; t < problem->terms().size(); ++t)
-      problem->terms()[t]->set_effect_index(static_cast<int>(index));
-  }
+  });
   return problem;
 }
 

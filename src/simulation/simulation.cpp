@@ -328,6 +328,7 @@ PetscErrorCode Simulation::run(int* status) {
     const double wall = MPI_Wtime() - t0;
     total_iterations_ += report.iterations;
     total_linear_iterations_ += report.linear_iterations;
+    total_solves_ += report.solves;
     solve_time_ += wall;
     rmtr_totals_ += report.rmtr;
     ++steps_done_;

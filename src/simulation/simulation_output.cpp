@@ -130,6 +130,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"type", Json(solver_ ? solver_->type() : std::string("none"))},
         {"iterations", Json(static_cast<long long>(total_iterations_))},
         {"linear_iterations", Json(static_cast<long long>(total_linear_iterations_))},
+        {"solves", Json(static_cast<long long>(total_solves_))},
         {"solve_time", Json(solve_time_)},
         {"converged", Json(all_converged_)},
         {"reason", Json(last ? last->reason : std::string("not run"))},
@@ -181,19 +182,25 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                             {"max_violation_all_steps", Json(violation_max_[i])},
                             {"warning_threshold", Json(kConstraintWarning * disc_->mesh_size())}}));
     }
-    Json::Object top{{"scene", Json(scene_.name)},
-                     {"status", Json(status)},
-                     {"dofs", Json(disc_->num_dofs())},
-                     {"ranks", Json(size_)},
-                     {"steps", Json(steps_done_)},
-                     {"time", Json((steps_done_ + first_step_) * scene_.time.dt)},
-                     {"energy", Json(energy)},
-                     {"gradient_norm", Json(static_cast<double>(gnorm))},
-                     {"probes", Json(probes)},
-                     {"solver", Json(solver)},
-                     {"material", material},
-                     {"constraints", Json(constraints)},
-                     {"wall_time", Json(MPI_Wtime() - wall_start_)}};
+    Json::Object top{
+        {"scene", Json(scene_.name)},
+        {"status", Json(status)},
+        {"dofs", Json(disc_->num_dofs())},
+        {"discretization", Json(disc_->kind())},
+        {"elements", Json(static_cast<long long>(disc_->elements().size()))},
+        {"integrator", Json(stepper_ ? stepper_->name()
+                                     : std::string(scene_.time.quasistatic() ? "quasistatic"
+                                                                             : "implicit_euler"))},
+        {"ranks", Json(size_)},
+        {"steps", Json(steps_done_)},
+        {"time", Json((steps_done_ + first_step_) * scene_.time.dt)},
+        {"energy", Json(energy)},
+        {"gradient_norm", Json(static_cast<double>(gnorm))},
+        {"probes", Json(probes)},
+        {"solver", Json(solver)},
+        {"material", material},
+        {"constraints", Json(constraints)},
+        {"wall_time", Json(MPI_Wtime() - wall_start_)}};
     if (spectrum_)
       top.emplace_back(
           "hessian",

@@ -7,6 +7,8 @@ namespace {
 /// A proximal solve that ends at the limiting accuracy ends the step as converged if ‖∇E‖ is
 /// within this factor of the tolerance (the solvers' own -tao_*_limiting_factor default).
 constexpr double kLimitingFactor = 100.0;
+/// Augmented-Lagrangian multiplier updates per implicit Euler step before giving up.
+constexpr int kMaxMultiplierUpdates = 50;
 }  // namespace
 
 ImplicitEuler::ImplicitEuler(MultilevelProblem& levels, StepSolver& solver, double dt)
@@ -25,6 +27,25 @@ PetscErrorCode ImplicitEuler::advance(double time, Vec u, Vec v, SolveReport& re
   PetscCall(levels_.synchronize(time, u, v));
   PetscCall(solver_.solve(u, report));
   report.solves = 1;
+  // An augmented Lagrangian tightens its constraints by re-solving the same step.
+  LevelProblem& finest = levels_.level(levels_.num_levels() - 1);
+  for (bool met = false; report.converged;) {
+    PetscCall(finest.update_multipliers(u, &met));
+    if (met) break;
+    if (report.multiplier_updates == kMaxMultiplierUpdates) {
+      report.converged = false;
+      report.reason = "DIVERGED_CONSTRAINT_TOLERANCE";
+      break;
+    }
+    SolveReport again;
+    PetscCall(solver_.solve(u, again));
+    again.iterations += report.iterations;
+    again.linear_iterations += report.linear_iterations;
+    again.rmtr += report.rmtr;
+    again.solves = report.solves + 1;
+    again.multiplier_updates = report.multiplier_updates + 1;
+    report = again;
+  }
   // v_{n+1} = (u_{n+1} − u_n) / dt
   PetscCall(VecWAXPY(v, -1.0, u_prev_, u));
   PetscCall(VecScale(v, 1.0 / dt_));
@@ -70,12 +91,22 @@ PetscErrorCode Quasistatic::advance(double time, Vec u, Vec v, SolveReport& repo
     PetscCall(VecNorm(gradient_, NORM_2, &energy_gradient));
     total.energy = energy;
     total.gradient_norm = energy_gradient;
-    if (!solve.converged || energy_gradient <= solve.gradient_tolerance) break;
-    // At the round-off floor another proximal solve cannot lower ‖∇E‖ either.
-    if (solve.reason == "CONVERGED_LIMITING_ACCURACY") {
-      limiting = energy_gradient <= kLimitingFactor * solve.gradient_tolerance;
-      break;
+    if (!solve.converged) break;
+    // At the round-off floor: done if ‖∇E‖ is there too; a solve that could not move at all
+    // ends the step (another one would start from the same point).
+    limiting = solve.reason == "CONVERGED_LIMITING_ACCURACY" &&
+               energy_gradient <= kLimitingFactor * solve.gradient_tolerance;
+    if (energy_gradient <= solve.gradient_tolerance || limiting) {
+      // In equilibrium: an augmented Lagrangian may still have to tighten its constraints.
+      bool met;
+      PetscCall(finest.update_multipliers(u, &met));
+      if (met) break;
+      ++total.multiplier_updates;
+      energy_gradient = PETSC_INFINITY;
+      limiting = false;
+      continue;
     }
+    if (solve.reason == "CONVERGED_LIMITING_ACCURACY" && solve.iterations == 0) break;
   }
   if (total.converged && !(energy_gradient <= total.gradient_tolerance) && !limiting) {
     total.converged = false;

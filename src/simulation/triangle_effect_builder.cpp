@@ -101,82 +101,73 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
                            (hi - lo).maxCoeff()};
   const double k = hinge_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
   const int nlocal = layout.num_local_points();
-  for (size_t index = 0; index < scene.effects.size(); ++index) {
-    const Effect& effect = scene.effects[index];
-    const std::string name = effect_name(effect);
-    const size_t first_new = problem->terms().size();
-    try {
-      if (std::holds_alternative<InertiaEffect>(effect)) {
-        problem->add_term(std::make_unique<TriangleInertiaTerm>(disc, layout, rho, scene.time.dt));
-      } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
-        const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
-        problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
-      } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
-        problem->add_term(std::make_unique<LinearLoadTerm>(
-            name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
-      } else if (const auto* l = std::get_if<LineLoadEffect>(&effect)) {
-        std::vector<double> force(3 * nlocal, 0.0);
-        const auto vertices = curve_vertices(disc, l->where, frame);
-        for (const auto& [v, w] : vertex_weights(disc, layout, vertices))
-          for (int c = 0; c < 3; ++c)
-            force[3 * layout.local_of(v) + c] += w * l->force_per_length[c];
-        problem->add_term(
-            std::make_unique<LinearLoadTerm>(name, std::move(force), l->ramp ? ramp_time : 0.0));
-      } else if (const auto* p = std::get_if<PointLoadEffect>(&effect)) {
-        std::vector<double> force(3 * nlocal, 0.0);
+  add_effect_terms(scene, *problem, "", [&](const Effect& effect, const std::string& name) {
+    if (std::holds_alternative<InertiaEffect>(effect)) {
+      problem->add_term(std::make_unique<TriangleInertiaTerm>(disc, layout, rho, scene.time.dt));
+    } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
+      const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
+      problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
+    } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
+      problem->add_term(std::make_unique<LinearLoadTerm>(
+          name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
+    } else if (const auto* l = std::get_if<LineLoadEffect>(&effect)) {
+      std::vector<double> force(3 * nlocal, 0.0);
+      const auto vertices = curve_vertices(disc, l->where, frame);
+      for (const auto& [v, w] : vertex_weights(disc, layout, vertices))
+        for (int c = 0; c < 3; ++c) force[3 * layout.local_of(v) + c] += w * l->force_per_length[c];
+      problem->add_term(
+          std::make_unique<LinearLoadTerm>(name, std::move(force), l->ramp ? ramp_time : 0.0));
+    } else if (const auto* p = std::get_if<PointLoadEffect>(&effect)) {
+      std::vector<double> force(3 * nlocal, 0.0);
+      const int v =
+          select_vertex(disc, std::get<PointSelection>(p->where.selection), frame, p->where.text);
+      if (owns(layout, v))
+        for (int c = 0; c < 3; ++c) force[3 * layout.local_of(v) + c] = p->force[c];
+      problem->add_term(
+          std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
+    } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
+      const double beta = penalty_parameter(d->penalty, d->sigma, h, scale);
+      std::vector<PenaltySample> samples;
+      if (std::holds_alternative<PointSelection>(d->where.selection)) {
         const int v =
-            select_vertex(disc, std::get<PointSelection>(p->where.selection), frame, p->where.text);
-        if (owns(layout, v))
-          for (int c = 0; c < 3; ++c) force[3 * layout.local_of(v) + c] = p->force[c];
-        problem->add_term(
-            std::make_unique<LinearLoadTerm>(name, std::move(force), p->ramp ? ramp_time : 0.0));
-      } else if (const auto* d = std::get_if<DirichletEffect>(&effect)) {
-        const double beta = penalty_parameter(d->penalty, d->sigma, h, scale);
-        std::vector<PenaltySample> samples;
-        if (std::holds_alternative<PointSelection>(d->where.selection)) {
-          const int v = select_vertex(disc, std::get<PointSelection>(d->where.selection), frame,
-                                      d->where.text);
-          if (owns(layout, v)) samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta, 0.0});
-        } else {
-          for (const auto& [v, w] :
-               vertex_weights(disc, layout, curve_vertices(disc, d->where, frame)))
-            samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0});
-        }
-        problem->add_term(std::make_unique<PenaltyTerm>(name, std::move(samples), d->components,
-                                                        motion_function(d->motion)));
-      } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
-        const double beta = penalty_parameter(c->penalty, c->sigma, h, scale);
-        const auto vertices = curve_vertices(disc, c->where, frame);
-        const auto edges = selected_boundary_edges(disc, vertices);
-        if (edges.empty())
-          throw SceneError("where '" + c->where.text +
-                           "': a clamp needs boundary edges (two neighbouring selected boundary "
-                           "vertices)");
-        std::vector<PenaltySample> samples;
-        for (const auto& [v, w] : vertex_weights(disc, layout, vertices))
+            select_vertex(disc, std::get<PointSelection>(d->where.selection), frame, d->where.text);
+        if (owns(layout, v)) samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta, 0.0});
+      } else {
+        for (const auto& [v, w] :
+             vertex_weights(disc, layout, curve_vertices(disc, d->where, frame)))
           samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0});
-        problem->add_term(std::make_unique<PenaltyTerm>(name, std::move(samples),
-                                                        std::array<bool, 3>{true, true, true},
-                                                        motion_function(c->motion)));
-        // The rotation: the shell's own bending stiffness (rotation_penalty scales it).
-        const double stiffness = c->rotation_penalty ? *c->rotation_penalty : k;
-        problem->add_term(std::make_unique<ClampHingeTerm>(name + "_rotation", disc, layout, edges,
-                                                           stiffness, motion_function(c->motion)));
-      } else if (const auto* p = std::get_if<PressureEffect>(&effect)) {
-        if (!disc.topology().closed())
-          throw SceneError("pressure needs a closed surface; this mesh has " +
-                           std::to_string(disc.topology().boundary_loops().size()) +
-                           " boundary loop(s)");
-        problem->add_term(
-            std::make_unique<PressureTerm>(disc, layout, p->pressure, p->ramp ? ramp_time : 0.0));
       }
-    } catch (const SceneError& e) {
-      throw SceneError(scene.file.string() + ": effects[" + std::to_string(index) + "]." + name +
-                       ": " + e.what());
+      auto term = std::make_unique<PenaltyTerm>(name, std::move(samples), d->components,
+                                                motion_function(d->motion));
+      if (d->tolerance) term->enable_augmented_lagrangian(*d->tolerance);
+      problem->add_term(std::move(term));
+    } else if (const auto* c = std::get_if<ClampEffect>(&effect)) {
+      const double beta = penalty_parameter(c->penalty, c->sigma, h, scale);
+      const auto vertices = curve_vertices(disc, c->where, frame);
+      const auto edges = selected_boundary_edges(disc, vertices);
+      if (edges.empty())
+        throw SceneError("where '" + c->where.text +
+                         "': a clamp needs boundary edges (two neighbouring selected boundary "
+                         "vertices)");
+      std::vector<PenaltySample> samples;
+      for (const auto& [v, w] : vertex_weights(disc, layout, vertices))
+        samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0});
+      problem->add_term(std::make_unique<PenaltyTerm>(name, std::move(samples),
+                                                      std::array<bool, 3>{true, true, true},
+                                                      motion_function(c->motion)));
+      // The rotation: the shell's own bending stiffness (rotation_penalty scales it).
+      const double stiffness = c->rotation_penalty ? *c->rotation_penalty : k;
+      problem->add_term(std::make_unique<ClampHingeTerm>(name + "_rotation", disc, layout, edges,
+                                                         stiffness, motion_function(c->motion)));
+    } else if (const auto* p = std::get_if<PressureEffect>(&effect)) {
+      if (!disc.topology().closed())
+        throw SceneError("pressure needs a closed surface; this mesh has " +
+                         std::to_string(disc.topology().boundary_loops().size()) +
+                         " boundary loop(s)");
+      problem->add_term(
+          std::make_unique<PressureTerm>(disc, layout, p->pressure, p->ramp ? ramp_time : 0.0));
     }
-    for (size_t t = first_new; t < problem->terms().size(); ++t)
-      problem->terms()[t]->set_effect_index(static_cast<int>(index));
-  }
+  });
   return problem;
 }
 

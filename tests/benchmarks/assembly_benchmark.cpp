@@ -1,5 +1,8 @@
 // Assembly throughput of the shell energy on one core: elements per second for energy only,
-// energy + gradient, and energy + gradient + Hessian, denim material, 4×4 cage refined 3 times.
+// energy + gradient, and energy + gradient + Hessian, for the subdivision shell (denim material,
+// 4×4 cage refined 3 times, 3 × 3 Gauss points) and for the triangle shell (neo-Hookean
+// membrane + hinge bending, 64 × 64 squares of two triangles: each element is a triangle with
+// its share, about 1.5, of the hinges).
 //
 //   build/tests/benchmarks/assembly_benchmark
 #include <benchmark/benchmark.h>
@@ -7,6 +10,8 @@
 
 #include "mlshell/effects.hpp"
 #include "mlshell/subdivision/subdivision_hierarchy.hpp"
+#include "mlshell/triangle/triangle_effects.hpp"
+#include "mlshell/triangle/triangle_generators.hpp"
 
 using namespace mlshell;
 
@@ -19,10 +24,10 @@ struct Fixture {
   std::unique_ptr<ShellElasticTerm> term;
   std::vector<double> u;
   Mat H = nullptr;
-  explicit Fixture(int refine)
-      : disc(SubdivisionHierarchy(add_ghost_ring(make_rectangle_cage(1, 1, 4, 4, 0, 0)), refine)
-                 .finest(),
-             3),
+  Fixture()
+      : disc(
+            SubdivisionHierarchy(add_ghost_ring(make_rectangle_cage(1, 1, 4, 4, 0, 0)), 3).finest(),
+            3),
         layout(PETSC_COMM_SELF, disc) {
     material.model = denim_preset();
     material.thickness = 0.66e-3;
@@ -39,8 +44,10 @@ struct Fixture {
   ~Fixture() { MatDestroy(&H); }
 };
 
+/// Times one evaluation of the fixture's elastic term (with its gradient, with its Hessian).
+template <class F>
 void run(benchmark::State& state, bool grad, bool hess) {
-  Fixture fx(3);
+  F fx;
   std::vector<double> g(fx.u.size());
   for (auto _ : state) {
     CompensatedSum e;
@@ -57,9 +64,40 @@ void run(benchmark::State& state, bool grad, bool hess) {
                          benchmark::Counter::kIsRate);
 }
 
-void BM_ElasticEnergy(benchmark::State& s) { run(s, false, false); }
-void BM_ElasticEnergyGradient(benchmark::State& s) { run(s, true, false); }
-void BM_ElasticEnergyGradientHessian(benchmark::State& s) { run(s, true, true); }
+struct TriangleFixture {
+  TriangleDiscretization disc;
+  ParallelLayout layout;
+  std::unique_ptr<TriangleElasticTerm> term;
+  std::vector<double> u;
+  Mat H = nullptr;
+  TriangleFixture()
+      : disc(make_triangle_rectangle(1, 1, 64, 64, 0, 0)), layout(PETSC_COMM_SELF, disc) {
+    TriangleShellParameters p;
+    p.youngs_modulus = 9e6;
+    p.poisson_ratio = 0.3;
+    p.thickness = 0.66e-3;
+    term = std::make_unique<TriangleElasticTerm>(disc, layout, p);
+    u.resize(3 * layout.num_local_points());
+    for (int i = 0; i < layout.num_local_points(); ++i) {
+      const Point3& X = disc.points()[layout.local_points()[i]];
+      u[3 * i + 0] = 0.01 * X.x();
+      u[3 * i + 2] = 0.05 * std::sin(3 * X.x()) * std::cos(2 * X.y());
+    }
+    layout.create_matrix(&H);
+  }
+  ~TriangleFixture() { MatDestroy(&H); }
+};
+
+void BM_TriangleEnergy(benchmark::State& s) { run<TriangleFixture>(s, false, false); }
+void BM_TriangleEnergyGradient(benchmark::State& s) { run<TriangleFixture>(s, true, false); }
+void BM_TriangleEnergyGradientHessian(benchmark::State& s) { run<TriangleFixture>(s, true, true); }
+BENCHMARK(BM_TriangleEnergy)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TriangleEnergyGradient)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TriangleEnergyGradientHessian)->Unit(benchmark::kMillisecond);
+
+void BM_ElasticEnergy(benchmark::State& s) { run<Fixture>(s, false, false); }
+void BM_ElasticEnergyGradient(benchmark::State& s) { run<Fixture>(s, true, false); }
+void BM_ElasticEnergyGradientHessian(benchmark::State& s) { run<Fixture>(s, true, true); }
 BENCHMARK(BM_ElasticEnergy)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ElasticEnergyGradient)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ElasticEnergyGradientHessian)->Unit(benchmark::kMillisecond);

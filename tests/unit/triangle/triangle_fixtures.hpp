@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <petscsys.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -18,9 +19,11 @@
 
 namespace mlshell {
 
-/// Parses a scene from YAML text (written to a temporary file named after `name`).
+/// Parses a scene from YAML text (written to a temporary file named after `name` and the
+/// process, so that the ranks of an MPI test do not share it).
 inline Scene triangle_scene(const std::string& name, const std::string& yaml) {
-  const auto file = std::filesystem::temp_directory_path() / ("mlshell_" + name + ".yaml");
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("mlshell_" + name + "_" + std::to_string(getpid()) + ".yaml");
   std::ofstream(file) << yaml;
   Scene scene = parse_scene(file);
   std::filesystem::remove(file);

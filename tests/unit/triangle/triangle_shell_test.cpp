@@ -6,6 +6,7 @@
 
 #include "mlshell/effects.hpp"
 #include "mlshell/triangle/triangle_effects.hpp"
+#include "mlshell/triangle/triangle_selection.hpp"
 #include "triangle_fixtures.hpp"
 
 using namespace mlshell;
@@ -212,4 +213,93 @@ TEST(TriangleShell, UniformStretchGivesTheClosedFormNeoHookeanEnergy) {
   const double psi =
       mu / 2 * (s1 * s1 + s2 * s2 - 2 - 2 * std::log(J)) + lambda / 2 * std::log(J) * std::log(J);
   EXPECT_NEAR(e.value(), tau * area * psi, 1e-10 * tau * area * psi);
+}
+
+TEST(TriangleShell, AugmentedLagrangianTermMatchesFiniteDifferences) {
+  const Scene scene = triangle_scene(
+      "fd_al",
+      std::string("geometry: {mesh: {generator: rectangle, size: [1, 1], faces: [3, 3]}}\n") +
+          kMaterial +
+          "effects:\n  - dirichlet: {where: boundary(left), tolerance: 1e-9, "
+          "motion: {translate: [0, 0, 0.1], over: [0, 1]}}\ntime: {dt: 1, steps: 1}\n");
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  EnergyTerm& dirichlet = *tp.problem->terms()[1];
+  ASSERT_TRUE(dirichlet.has_multipliers());
+  const auto u = random_displacement(3 * tp.disc().num_points(), 0.05, 13);
+  // Nonzero multipliers: one update at a violated state.
+  CompensatedSum before;
+  PetscCallAbort(PETSC_COMM_SELF, dirichlet.add(u, before, nullptr, nullptr));
+  dirichlet.update_multipliers(u, 1.0);
+  CompensatedSum after;
+  PetscCallAbort(PETSC_COMM_SELF, dirichlet.add(u, after, nullptr, nullptr));
+  EXPECT_GT(after.value(), before.value());  // −λ·c with λ = −β w c adds β w |c|²
+  expect_derivatives(tp, dirichlet, u, 1e-6, "dirichlet (augmented Lagrangian)");
+}
+
+TEST(TriangleShell, AugmentedLagrangianDrivesTheViolationBelowItsTolerance) {
+  // A soft explicit penalty lets a loaded dome's rim move by about f / β; the multipliers
+  // bring it below the tolerance.
+  for (const char* mode : {"", ", tolerance: 1e-9"}) {
+    const Scene scene = triangle_scene(
+        "al", std::string("geometry: {mesh: {generator: dome, radius: 1, opening_angle: 1.0, "
+                          "rings: 5}}\n") +
+                  kMaterial + "effects:\n  - dirichlet: {where: boundary, penalty: 1e4" + mode +
+                  "}\n  - point_load: {where: {at: [0, 0, 1]}, force: [0, 0, -20]}\n"
+                  "time: {dt: 1, steps: 1, integrator: quasistatic}\n");
+    const SolvedScene solved = solve_scene(
+        scene, PETSC_COMM_SELF, (std::filesystem::temp_directory_path() / "mlshell_al").string());
+    ASSERT_EQ(solved.status, 0) << mode;
+    std::vector<double> violations;
+    PetscCallAbort(PETSC_COMM_SELF, solved.simulation->problem().constraint_violations(
+                                        solved.simulation->displacement(), violations));
+    double worst = 0.0;
+    for (double v : violations) worst = std::max(worst, v);
+    if (*mode)
+      EXPECT_LE(worst, 1e-9);
+    else
+      EXPECT_GT(worst, 1e-5);  // the penalty alone lets go
+  }
+}
+
+TEST(TriangleShell, SelectionsResolveToVertices) {
+  const Scene scene = triangle_scene(
+      "select",
+      std::string("geometry: {mesh: {generator: rectangle, size: [2, 1], faces: [4, 2]}}\n") +
+          kMaterial + "time: {dt: 1, steps: 1}\n");
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  const CageFrame frame = CageFrame::from(scene.geometry);
+  const auto& X = tp.disc().points();
+  CurveSelection all;
+  EXPECT_EQ(select_vertices(tp.disc(), all, frame, "boundary").size(), 12u);  // 5×3 grid, 3 inside
+  CurveSelection left;
+  left.kind = CurveSelection::Kind::Side;
+  left.side = "left";
+  const auto l = select_vertices(tp.disc(), left, frame, "boundary(left)");
+  ASSERT_EQ(l.size(), 3u);
+  for (int v : l) EXPECT_EQ(X[v][0], 0.0);
+  CurveSelection group;
+  group.kind = CurveSelection::Kind::Group;
+  group.group = "left";
+  EXPECT_EQ(select_vertices(tp.disc(), group, frame, "group(left)"), l);
+  CurveSelection loop;
+  loop.kind = CurveSelection::Kind::Loop;
+  EXPECT_EQ(select_vertices(tp.disc(), loop, frame, "boundary(loop 0)").size(), 12u);
+  loop.loop = 1;
+  EXPECT_THROW(select_vertices(tp.disc(), loop, frame, "boundary(loop 1)"), SceneError);
+  CurveSelection box;
+  box.kind = CurveSelection::Kind::Box;
+  box.box_min = {0.9, 0.4, -1};
+  box.box_max = {1.1, 0.6, 1};
+  const auto b = select_vertices(tp.disc(), box, frame, "box");
+  ASSERT_EQ(b.size(), 1u);  // the interior vertex (1, 0.5)
+  EXPECT_EQ(X[b[0]], Point3(1.0, 0.5, 0.0));
+  PointSelection corner;
+  corner.kind = PointSelection::Kind::Corner;
+  corner.corner = "top-right";
+  EXPECT_EQ(X[select_vertex(tp.disc(), corner, frame, "corner")], Point3(2, 1, 0));
+  PointSelection at;
+  at.at = {0.45, 0.3, 0.2};
+  EXPECT_EQ(X[select_vertex(tp.disc(), at, frame, "at")], Point3(0.5, 0.5, 0));
+  // The boundary edges among the left side's vertices: two, along the side.
+  EXPECT_EQ(selected_boundary_edges(tp.disc(), l).size(), 2u);
 }
