@@ -2,9 +2,11 @@
 // against finite differences of the assembled energy, zero energy at rest for flat and curved
 // rest shapes, a uniform stretch against the closed-form neo-Hookean energy, and the
 // quasistatic integrator's equilibrium.
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "mlshell/effects.hpp"
+#include "mlshell/step_solver.hpp"
 #include "mlshell/triangle/triangle_effects.hpp"
 #include "mlshell/triangle/triangle_selection.hpp"
 #include "triangle_fixtures.hpp"
@@ -302,4 +304,82 @@ TEST(TriangleShell, SelectionsResolveToVertices) {
   EXPECT_EQ(X[select_vertex(tp.disc(), at, frame, "at")], Point3(0.5, 0.5, 0));
   // The boundary edges among the left side's vertices: two, along the side.
   EXPECT_EQ(selected_boundary_edges(tp.disc(), l).size(), 2u);
+}
+
+TEST(TriangleShell, ClampMovesWithItsMotionAndResistsRotationWithTheBendingStiffness) {
+  // 2 × 1 rectangle of 4 × 2 squares, clamped on the left (two boundary edges of length 0.5,
+  // right triangles of area 1/8): a rigid rotation by φ about the clamped edge turns each clamp
+  // hinge by exactly φ, so the rotation energy is 2 · 3k|e|²/(Ā + Ā) φ² = 6kφ².
+  const Scene scene = triangle_scene(
+      "clamp",
+      std::string("geometry: {mesh: {generator: rectangle, size: [2, 1], faces: [4, 2]}}\n") +
+          kMaterial +
+          "effects:\n  - clamp: {where: boundary(left), motion: {translate: [0.1, 0.2, "
+          "0.3], over: [0, 1]}}\ntime: {dt: 1, steps: 1}\n");
+  TriangleProblem tp(scene, PETSC_COMM_SELF);  // at t = 1: the motion is complete
+  const EnergyTerm& penalty = *tp.problem->terms()[1];
+  const EnergyTerm& rotation = *tp.problem->terms()[2];
+  ASSERT_EQ(rotation.name(), "clamp_rotation");
+  const int n = tp.disc().num_points();
+  auto energy = [&](const EnergyTerm& t, const std::vector<double>& u) {
+    CompensatedSum e;
+    PetscCallAbort(PETSC_COMM_SELF, t.add(u, e, nullptr, nullptr));
+    return e.value();
+  };
+  // Following the motion rigidly costs nothing.
+  std::vector<double> moved(3 * n);
+  for (int i = 0; i < n; ++i) moved[3 * i] = 0.1, moved[3 * i + 1] = 0.2, moved[3 * i + 2] = 0.3;
+  EXPECT_NEAR(energy(penalty, moved), 0.0, 1e-20);
+  EXPECT_NEAR(energy(rotation, moved), 0.0, 1e-20);
+  // A rotation about the clamped edge (the y axis), after the motion.
+  const double phi = 0.3, k = 1e6 * 1e-6 / (24.0 * (1.0 - 0.09));
+  std::vector<double> rotated(moved);
+  for (int i = 0; i < n; ++i) {
+    const Point3& X = tp.disc().points()[i];
+    rotated[3 * i] += X[0] * (std::cos(phi) - 1.0);
+    rotated[3 * i + 2] += X[0] * std::sin(phi);
+  }
+  EXPECT_NEAR(energy(penalty, rotated), 0.0, 1e-20);  // the clamped edge stays in place
+  EXPECT_NEAR(energy(rotation, rotated), 6.0 * k * phi * phi, 1e-12 * k);
+}
+
+TEST(TriangleShell, ProjectedNewtonAssemblesAPositiveSemiDefiniteHessian) {
+  // A compressed sheet: its membranes are in compression, whose neo-Hookean Hessian is
+  // indefinite; projected Newton (the default with pnewton) assembles a PSD Hessian.
+  const Scene scene = triangle_scene(
+      "psd",
+      std::string("geometry: {mesh: {generator: rectangle, size: [1, 1], faces: [3, 3]}}\n") +
+          kMaterial + "time: {dt: 1, steps: 1}\n");
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  const int n = tp.disc().num_points();
+  Vec u;
+  PetscCallAbort(PETSC_COMM_SELF, tp.layout().create_vector(&u));
+  PetscScalar* a;
+  VecGetArray(u, &a);
+  for (int i = 0; i < n; ++i) {
+    a[3 * i] = -0.2 * tp.disc().points()[i][0];
+    a[3 * i + 2] = 0.01 * std::sin(7.0 * i);
+  }
+  VecRestoreArray(u, &a);
+  auto min_eigenvalue = [&](bool project) {
+    for (const auto& t : tp.problem->terms()) t->set_hessian_projection(project);
+    Mat H, D;
+    PetscCallAbort(PETSC_COMM_SELF, tp.problem->create_matrix(&H));
+    PetscCallAbort(PETSC_COMM_SELF, tp.problem->hessian(u, H));
+    PetscCallAbort(PETSC_COMM_SELF, MatConvert(H, MATDENSE, MAT_INITIAL_MATRIX, &D));
+    const PetscScalar* d;
+    MatDenseGetArrayRead(D, &d);
+    const Eigen::MatrixXd M = Eigen::Map<const Eigen::MatrixXd>(d, 3 * n, 3 * n);
+    MatDenseRestoreArrayRead(D, &d);
+    MatDestroy(&D);
+    MatDestroy(&H);
+    const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues();
+    return std::make_pair(ev.minCoeff(), ev.maxCoeff());
+  };
+  const auto [raw_min, raw_max] = min_eigenvalue(false);
+  EXPECT_LT(raw_min, -1e-6 * raw_max) << "the state must make the Hessian indefinite";
+  const auto [psd_min, psd_max] = min_eigenvalue(hessian_projection_option("pnewton"));
+  EXPECT_GE(psd_min, -1e-10 * psd_max);
+  EXPECT_FALSE(hessian_projection_option("rmtr"));
+  VecDestroy(&u);
 }
