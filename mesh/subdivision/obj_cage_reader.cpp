@@ -3,17 +3,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "../obj_error.hpp"
 #include "mlshell/subdivision/quad_mesh.hpp"
 
 namespace mlshell {
 
 namespace {
-
-[[noreturn]] void fail(const std::filesystem::path& path, int line, const std::string& what) {
-  std::ostringstream m;
-  m << path.string() << ":" << line << ": " << what;
-  throw MeshError(m.str());
-}
 
 /// Parses the vertex index of an `f` entry (`i`, `i/t`, `i//n`, `i/t/n`; negative = relative).
 int parse_face_index(const std::string& token, int num_points, const std::filesystem::path& path,
@@ -27,10 +22,10 @@ int parse_face_index(const std::string& token, int num_points, const std::filesy
     used = 0;
   }
   if (used != head.size() || head.empty() || index == 0)
-    fail(path, line, "bad face entry '" + token + "' (expected a vertex index)");
+    obj_error(path, line, "bad face entry '" + token + "' (expected a vertex index)");
   const long resolved = index > 0 ? index - 1 : num_points + index;
   if (resolved < 0 || resolved >= num_points)
-    fail(path, line, "face refers to vertex " + head + " which is not defined before it");
+    obj_error(path, line, "face refers to vertex " + head + " which is not defined before it");
   return static_cast<int>(resolved);
 }
 
@@ -49,7 +44,7 @@ QuadMesh read_obj_cage(const std::filesystem::path& path) {
     if (tag == "v") {
       Point3 p;
       if (!(s >> p.x() >> p.y() >> p.z()) || !p.allFinite())
-        fail(path, line, "bad vertex '" + text + "' (expected three finite numbers)");
+        obj_error(path, line, "bad vertex '" + text + "' (expected three finite numbers)");
       mesh.points.push_back(p);
     } else if (tag == "f") {
       std::vector<int> face;
@@ -60,7 +55,7 @@ QuadMesh read_obj_cage(const std::filesystem::path& path) {
         m << "face with " << face.size()
           << " vertices: mlshell needs an all-quad cage (Catmull–Clark on non-quad faces is not "
              "supported; subdivide the mesh once in a modeller to make it all-quad)";
-        fail(path, line, m.str());
+        obj_error(path, line, m.str());
       }
       mesh.quads.push_back({face[0], face[1], face[2], face[3]});
       mesh.ghost.push_back(in_ghost_group ? 1 : 0);

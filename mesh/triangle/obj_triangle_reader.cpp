@@ -4,17 +4,12 @@
 #include <set>
 #include <sstream>
 
+#include "../obj_error.hpp"
 #include "mlshell/triangle/triangle_mesh.hpp"
 
 namespace mlshell {
 
 namespace {
-
-[[noreturn]] void fail(const std::filesystem::path& path, int line, const std::string& what) {
-  std::ostringstream m;
-  m << path.string() << ":" << line << ": " << what;
-  throw MeshError(m.str());
-}
 
 /// Parses a whole token as a number; from_chars accepts "nan" and "inf", which validation
 /// then reports with the vertex. A leading '+' is allowed, as printf-style writers emit it.
@@ -43,14 +38,15 @@ int parse_face_index(const std::string& token, int num_points, const std::filesy
   for (size_t i = 1; ok && i < parts.size(); ++i)
     ok = (i == 1 && parts[i].empty() && parts.size() == 3) || parse_number(parts[i], unused);
   if (!ok)
-    fail(path, line,
-         "bad face entry '" + token + "' (expected a vertex index i, i/t, i//n or i/t/n)");
+    obj_error(path, line,
+              "bad face entry '" + token + "' (expected a vertex index i, i/t, i//n or i/t/n)");
   const long resolved = index > 0 ? index - 1 : num_points + index;
   if (resolved < 0 || resolved >= num_points)
-    fail(path, line,
-         "face refers to vertex " + parts[0] + " but only " + std::to_string(num_points) +
-             " vertices are defined before it (expected an index from 1 to " +
-             std::to_string(num_points) + ", or from -1 to -" + std::to_string(num_points) + ")");
+    obj_error(path, line,
+              "face refers to vertex " + parts[0] + " but only " + std::to_string(num_points) +
+                  " vertices are defined before it (expected an index from 1 to " +
+                  std::to_string(num_points) + ", or from -1 to -" + std::to_string(num_points) +
+                  ")");
   return static_cast<int>(resolved);
 }
 
@@ -78,9 +74,9 @@ TriangleMesh read_obj_triangles(const std::filesystem::path& path) {
       std::string token;
       for (int k = 0; k < 3; ++k) {
         if (!(s >> token))
-          fail(path, line, "vertex '" + text + "' has fewer than three coordinates");
+          obj_error(path, line, "vertex '" + text + "' has fewer than three coordinates");
         if (!parse_number(token, p[k]))
-          fail(path, line, "malformed number '" + token + "' in vertex '" + text + "'");
+          obj_error(path, line, "malformed number '" + token + "' in vertex '" + text + "'");
       }
       mesh.points.push_back(p);
       lines.points.push_back(line);
@@ -89,10 +85,11 @@ TriangleMesh read_obj_triangles(const std::filesystem::path& path) {
       std::string token;
       while (s >> token) face.push_back(parse_face_index(token, mesh.num_points(), path, line));
       if (face.size() != 3)
-        fail(path, line,
-             "face with " + std::to_string(face.size()) +
-                 " vertices: mlshell's triangle shells need a triangle mesh; triangulate the face "
-                 "first");
+        obj_error(
+            path, line,
+            "face with " + std::to_string(face.size()) +
+                " vertices: mlshell's triangle shells need a triangle mesh; triangulate the face "
+                "first");
       mesh.triangles.push_back({face[0], face[1], face[2]});
       lines.triangles.push_back(line);
       for (const std::string& g : current_groups) groups[g].insert(face.begin(), face.end());

@@ -59,6 +59,10 @@ PetscErrorCode LevelProblem::face_fields(
     Vec u, int num_faces, std::vector<std::pair<std::string, std::vector<double>>>& fields) {
   PetscFunctionBeginUser;
   fields.clear();
+  // Every rank has the same terms: all return here, or none.
+  if (std::all_of(terms_.begin(), terms_.end(),
+                  [](const auto& t) { return t->face_field_names().empty(); }))
+    PetscFunctionReturn(0);
   PetscCall(layout_.to_local(u, u_local_));
   const auto& mine = layout_.local_elements();
   int size;

@@ -60,28 +60,26 @@ EOF
   fi
 }
 
+# run_folder FOLDER PREFIX DESCRIPTION: every scene in tests/data/FOLDER exits 2 naming itself.
+run_folder() {
+  local folder=$1 prefix=$2 description=$3 scene base
+  shopt -s nullglob
+  local scenes=("$SRC/tests/data/$folder"/*.yaml)
+  shopt -u nullglob
+  [[ ${#scenes[@]} -gt 0 ]] || { echo "FAIL: no scenes in $SRC/tests/data/$folder" >&2; exit 1; }
+  echo "== ${#scenes[@]} $description"
+  for scene in "${scenes[@]}"; do
+    base=$(basename "$scene")
+    run_case "$prefix-${base%.yaml}" 2 "$base" "$scene" "$scene"
+  done
+}
+
 # --- every scene in tests/data/bad --------------------------------------------------------------
-shopt -s nullglob
-bad_scenes=("$SRC"/tests/data/bad/*.yaml)
-shopt -u nullglob
-[[ ${#bad_scenes[@]} -gt 0 ]] || { echo "FAIL: no scenes in $SRC/tests/data/bad" >&2; exit 1; }
-echo "== ${#bad_scenes[@]} broken scenes from tests/data/bad"
-for scene in "${bad_scenes[@]}"; do
-  base=$(basename "$scene")
-  run_case "bad-${base%.yaml}" 2 "$base" "$scene" "$scene"
-done
+run_folder bad bad "broken scenes from tests/data/bad"
 
 # --- scenes that parse but fail on their mesh (tests/data/bad_on_mesh) ---------------------------------
 # Selections and effects that the mesh itself refutes: still exit 2, naming the scene file.
-shopt -s nullglob
-mesh_scenes=("$SRC"/tests/data/bad_on_mesh/*.yaml)
-shopt -u nullglob
-[[ ${#mesh_scenes[@]} -gt 0 ]] || { echo "FAIL: no scenes in $SRC/tests/data/bad_on_mesh" >&2; exit 1; }
-echo "== ${#mesh_scenes[@]} scenes refuted by their mesh"
-for scene in "${mesh_scenes[@]}"; do
-  base=$(basename "$scene")
-  run_case "on-mesh-${base%.yaml}" 2 "$base" "$scene" "$scene"
-done
+run_folder bad_on_mesh on-mesh "scenes refuted by their mesh"
 
 # --- the command line -----------------------------------------------------------------------------
 echo "== command line"

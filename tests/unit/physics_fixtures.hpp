@@ -1,6 +1,7 @@
 // Small level problems for derivative and parallel tests, each enabling one family of effects.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -117,6 +118,16 @@ struct SolvedScene {
   int status = -1;
   std::vector<double> displacement;
 };
+
+/// max |a − b| / max |b|: how far a result (on 2 ranks) is from its reference (on 1).
+inline double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double diff = 0.0, norm = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    diff = std::max(diff, std::abs(a[i] - b[i]));
+    norm = std::max(norm, std::abs(b[i]));
+  }
+  return diff / (norm + 1e-300);
+}
 
 inline SolvedScene solve_scene(Scene scene, MPI_Comm comm, const std::string& dir) {
   scene.output.dir = dir;

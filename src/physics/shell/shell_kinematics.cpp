@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include "mlshell/cross_matrix.hpp"
 #include "mlshell/subdivision/subdivision_discretization.hpp"
 
 namespace mlshell {
@@ -81,16 +82,6 @@ void ShellSection::inspect(const ShellReference& ref, const Vector6& s,
   }
 }
 
-namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& x) {
-  Eigen::Matrix3d m;
-  m << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
-  return m;
-}
-
-}  // namespace
-
 // Derivatives in closed form. With c = a₁ × a₂, s = |c|, n = c/s, P = I − n nᵀ:
 //   ε11: ∂/∂δ₁ = a₁;  ε12: ∂/∂δ₁ = a₂/2, ∂/∂δ₂ = a₁/2;  ε22: ∂/∂δ₂ = a₂;
 //   κ_q = b̄_q − a_q·n:  ∂/∂δ_q = −n,  ∂/∂δ₁ = −a₂ × g_q,  ∂/∂δ₂ = −g_q × a₁,  g_q = P a_q / s.
@@ -140,10 +131,10 @@ void shell_strains(const ShellReference& ref, const double delta[15], Vector6& s
   const Eigen::Matrix3d Hc =
       -(n.dot(v) * P + n * Pv.transpose() + Pv * n.transpose()) / (norm * norm);
   const Eigen::Vector3d gc = Pv / norm;
-  const Eigen::Matrix3d J1 = -skew(a[1]), J2 = skew(a[0]);  // ∂c/∂a₁, ∂c/∂a₂
+  const Eigen::Matrix3d J1 = -cross_matrix(a[1]), J2 = cross_matrix(a[0]);  // ∂c/∂a₁, ∂c/∂a₂
   hw->block<3, 3>(0, 0) += J1.transpose() * Hc * J1;
   hw->block<3, 3>(3, 3) += J2.transpose() * Hc * J2;
-  const Eigen::Matrix3d mixed = J1.transpose() * Hc * J2 - skew(gc);
+  const Eigen::Matrix3d mixed = J1.transpose() * Hc * J2 - cross_matrix(gc);
   hw->block<3, 3>(0, 3) += mixed;
   hw->block<3, 3>(3, 0) += mixed.transpose();
   for (int q = 0; q < 3; ++q) {

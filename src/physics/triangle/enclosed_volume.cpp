@@ -3,17 +3,9 @@
 
 #include <Eigen/Dense>
 
+#include "mlshell/cross_matrix.hpp"
+
 namespace mlshell {
-
-namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& x) {
-  Eigen::Matrix3d m;
-  m << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
-  return m;
-}
-
-}  // namespace
 
 // V_t = x0·(x1 × x2)/6, a trilinear form, symmetric under cyclic permutation of (x0, x1, x2).
 //   ∇: (x1 × x2, x2 × x0, x0 × x1)/6.
@@ -29,8 +21,8 @@ double triangle_volume(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
   }
   if (hess) {
     hess->setZero();
-    const Eigen::Matrix3d H01 = -kSixth * skew(x2), H02 = kSixth * skew(x1),
-                          H12 = -kSixth * skew(x0);
+    const Eigen::Matrix3d H01 = -kSixth * cross_matrix(x2), H02 = kSixth * cross_matrix(x1),
+                          H12 = -kSixth * cross_matrix(x0);
     hess->block<3, 3>(0, 3) = H01;
     hess->block<3, 3>(3, 0) = H01.transpose();
     hess->block<3, 3>(0, 6) = H02;

@@ -31,18 +31,14 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "mlshell/cross_matrix.hpp"
+
 namespace mlshell {
 
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kPi = std::numbers::pi;
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& x) {
-  Eigen::Matrix3d m;
-  m << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
-  return m;
-}
 
 // θ = atan2((n₁ × n₂)·ê, n₁·n₂), with atan2's −π mapped to π so that θ ∈ (−π, π].
 double angle_of(const Eigen::Vector3d& e, const Eigen::Vector3d& n1, const Eigen::Vector3d& n2) {
@@ -85,7 +81,8 @@ bool dihedral_derivatives(const Eigen::Vector3d x[4], double& theta, Vector12* g
     const Eigen::Vector3d grad_s[3] = {e - r, r - 2.0 * e, e};
     const Eigen::Vector3d grad_t[3] = {-r - e, r, e};
     const Eigen::Vector3d grad_l[3] = {-e_hat, e_hat, Eigen::Vector3d::Zero()};
-    const Eigen::Matrix3d dn[3] = {sigma * skew(r - e), -sigma * skew(r), sigma * skew(e)};
+    const Eigen::Matrix3d dn[3] = {sigma * cross_matrix(r - e), -sigma * cross_matrix(r),
+                                   sigma * cross_matrix(e)};
     const Eigen::Vector3d N = n[k] / std::sqrt(n2);
     const Eigen::Matrix3d dw = (I - 2.0 * N * N.transpose()) / n2;  // ∂w/∂n
     for (int u = 0; u < 3; ++u) {

@@ -38,15 +38,6 @@ Evaluation evaluate(TestProblem& tp) {
   return e;
 }
 
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0.0, norm = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    diff = std::max(diff, std::abs(a[i] - b[i]));
-    norm = std::max(norm, std::abs(b[i]));
-  }
-  return diff / (norm + 1e-300);
-}
-
 }  // namespace
 
 TEST(MpiEquivalence, EnergyGradientAndHessianAgreeWithOneRank) {

@@ -45,15 +45,6 @@ Evaluation evaluate(TriangleProblem& tp) {
   return e;
 }
 
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0.0, norm = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    diff = std::max(diff, std::abs(a[i] - b[i]));
-    norm = std::max(norm, std::abs(b[i]));
-  }
-  return diff / (norm + 1e-300);
-}
-
 const char* kScene =
     "geometry: {mesh: {generator: rectangle, size: [1, 1], edge_length: 0.1}}\n"
     "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, thickness: 0.01, "
