@@ -53,8 +53,8 @@ struct ObjCage {
 
 /// `mesh: {obj: path}` or `mesh: {generator: rectangle | cylinder | dome | sphere, ...}`: a
 /// triangle-mesh shell (paper 2) instead of a subdivision cage.
-///   rectangle  size: [w, h], faces: [nx, ny] (structured) or edge_length: l (unstructured
-///              Delaunay), origin: [x, y]
+///   rectangle  size: [w, h], faces: [nx, ny] (structured; diagonals: alternating | uniform)
+///              or edge_length: l (unstructured Delaunay), origin: [x, y]
 ///   cylinder   radius, length, faces: [around, along]   (axis z, two boundary loops)
 ///   dome       radius, opening_angle (rad, polar angle of the rim), rings   (apex on +z)
 ///   sphere     radius, subdivisions (icosphere: 20·4^s triangles, closed)
@@ -65,6 +65,7 @@ struct TriangleMeshSpec {
   std::array<double, 2> size{1.0, 1.0};
   std::array<int, 2> faces{8, 8};
   std::optional<double> edge_length;  ///< rectangle: unstructured with this target edge length
+  bool uniform_diagonals = false;     ///< structured rectangle: every diagonal from bottom-left
   std::array<double, 2> origin{0.0, 0.0};
   double radius = 1.0, length = 1.0, opening_angle = 1.0;
   int rings = 8, subdivisions = 3;
@@ -108,11 +109,13 @@ struct SvkMaterial {
 };
 
 /// Triangle-mesh shells: `{model: neo-hookean | st-venant-kirchhoff, youngs_modulus: E,
-/// poisson_ratio: nu, thickness, volume_density}` — the membrane of paper 2 (neo-Hookean, or
-/// St. Venant–Kirchhoff) plus discrete hinge bending; `volume_density` in kg/m³ (MaterialSpec's
-/// density is then volume_density × thickness).
+/// poisson_ratio: nu, thickness, volume_density, bending: hinge | midedge}` — the membrane of
+/// paper 2 (neo-Hookean, or St. Venant–Kirchhoff) plus discrete hinge bending (paper 2) or
+/// midedge-normal bending; `volume_density` in kg/m³ (MaterialSpec's density is then
+/// volume_density × thickness).
 struct TriangleMaterial {
   bool neo_hookean = true;
+  bool midedge_bending = false;  ///< `bending: midedge` (default: hinge)
   double youngs_modulus = 0.0;  ///< Pa, > 0
   double poisson_ratio = 0.0;   ///< in (-1, 0.5)
 };

@@ -85,7 +85,7 @@ void add_side_groups(TriangleMesh& mesh, double width, double height, double x0,
 }  // namespace
 
 TriangleMesh make_triangle_rectangle(double width, double height, int nx, int ny, double x0,
-                                     double y0) {
+                                     double y0, bool uniform_diagonals) {
   const char* name = "make_triangle_rectangle";
   require_positive(name, "width", width);
   require_positive(name, "height", height);
@@ -102,7 +102,8 @@ TriangleMesh make_triangle_rectangle(double width, double height, int nx, int ny
   auto id = [&](int i, int j) { return j * (nx + 1) + i; };
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
-      add_quad(mesh, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1), (i + j) % 2 == 0);
+      add_quad(mesh, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1),
+               uniform_diagonals || (i + j) % 2 == 0);
   add_side_groups(mesh, width, height, x0, y0);
   validate_triangle_mesh(mesh, name);
   return mesh;

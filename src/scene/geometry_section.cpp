@@ -114,8 +114,16 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
     if (const auto f = mesh.find(key)) value = f->positive_number();
   };
   if (kind == "rectangle") {
-    mesh.expect_keys({"generator", "size", "faces", "edge_length", "origin"});
+    mesh.expect_keys({"generator", "size", "faces", "edge_length", "origin", "diagonals"});
     spec.generator = G::kRectangle;
+    if (const auto d = mesh.find("diagonals")) {
+      const std::string name = d->string();
+      d->check(name == "alternating" || name == "uniform", "unknown diagonal pattern",
+               "alternating (criss-cross, the default) or uniform (all bottom-left to top-right)");
+      d->check(!mesh.find("edge_length"), "applies to structured rectangles (faces), not to "
+                                          "unstructured ones (edge_length)");
+      spec.uniform_diagonals = name == "uniform";
+    }
     if (const auto size = mesh.find("size")) spec.size = read_size(*size);
     if (const auto faces = mesh.find("faces")) spec.faces = read_faces(*faces);
     if (const auto origin = mesh.find("origin")) spec.origin = origin->numbers<2>("[x, y] in m");

@@ -115,10 +115,19 @@ MaterialSpec read_material(const Field& material) {
   MaterialSpec spec;
   if (model_name == "neo-hookean" || model_name == "st-venant-kirchhoff") {
     material.expect_keys(
-        {"model", "youngs_modulus", "poisson_ratio", "thickness", "volume_density"});
+        {"model", "youngs_modulus", "poisson_ratio", "thickness", "volume_density", "bending"});
     const SvkMaterial iso = read_svk(material);
-    spec.model =
-        TriangleMaterial{model_name == "neo-hookean", iso.youngs_modulus, iso.poisson_ratio};
+    TriangleMaterial triangle;
+    triangle.neo_hookean = model_name == "neo-hookean";
+    triangle.youngs_modulus = iso.youngs_modulus;
+    triangle.poisson_ratio = iso.poisson_ratio;
+    if (const auto bending = material.find("bending")) {
+      const std::string name = bending->string();
+      bending->check(name == "hinge" || name == "midedge", "unknown bending model",
+                     "hinge (discrete hinges, paper 2) or midedge (midedge-normal plate element)");
+      triangle.midedge_bending = name == "midedge";
+    }
+    spec.model = triangle;
     spec.thickness = material.require("thickness", "a number > 0, in m").positive_number();
     const Field rho = material.require("volume_density", "a number >= 0, in kg/m³");
     rho.check(rho.number() >= 0.0, "must be >= 0");

@@ -23,7 +23,7 @@ geometry:                    required
   mesh:                      instead of cage and refine: a triangle-mesh shell (paper 2); one of
     {obj: path}              a triangle OBJ; `g name` lines name vertex groups for group(name)
     {generator: rectangle, size: [w, h], faces: [nx, ny], origin: [x, y]}   structured, with
-        alternating diagonals (defaults size [1, 1], faces [8, 8]); or instead of faces
+        alternating diagonals (defaults size [1, 1], faces [8, 8]; or diagonals: uniform); or
         edge_length: l      an unstructured Delaunay mesh with edges of about l (<= w/2, h/2)
     {generator: cylinder, radius: r, length: l, faces: [around >= 3, along]}   open, axis z
     {generator: dome, radius: r, opening_angle: a, rings: n}   apex on +z, rim at a in (0, pi)
@@ -45,9 +45,9 @@ material:                    required
   model: isotropic-svk       St. Venant-Kirchhoff
     youngs_modulus: E        Pa, > 0 (required)
     poisson_ratio: nu        in (-1, 0.5) (required)
-  model: neo-hookean | st-venant-kirchhoff   triangle meshes: that membrane plus hinge bending
-                             k = E tau^3/(24 (1 - nu^2)); E, nu, thickness as above, and
+  model: neo-hookean | st-venant-kirchhoff   triangle meshes (E, nu, thickness as above):
     volume_density: number   kg/m^3, >= 0 (required; instead of density)
+    bending: hinge | midedge hinge (default, paper 2) or midedge (Kirchhoff's plate; README)
   thickness: number          m, > 0; required (denim preset: 0.66e-3)
   density: number            area density kg/m^2, >= 0; required (denim preset: 0.4)
   thickness_points: int      Gauss points through the thickness, 1..8 (default 3)
@@ -68,7 +68,8 @@ effects:                     optional list; only the listed effects are simulate
     sigma: > 0 (default 5): penalty beta = (Y tau / Y tau_denim) (1 m / L) (h / L)^-sigma for the
         finest mesh size h, the membrane stiffness Y tau of the material and the size L of the
         surface (the paper's h^-sigma for its 1 m denim); penalty: explicit beta > 0.
-    rotation_penalty: > 0 (default beta * h^2; triangle meshes: the clamp hinges' stiffness, k).
+    rotation_penalty: > 0 (default beta * h^2; triangle meshes: the clamp's k or D, default the
+        shell's own bending stiffness).
     MOTION = {translate: [dx, dy, dz], over: [t0, t1]}: the prescribed displacement is 0 until
     t0, grows linearly to translate at t1 and stays there; t0 <= t1 (t0 == t1 is a jump).
 initial_state:               optional; default: the reference configuration

@@ -2,7 +2,8 @@
 // energy + gradient, and energy + gradient + Hessian, for the subdivision shell (denim material,
 // 4×4 cage refined 3 times, 3 × 3 Gauss points) and for the triangle shell (neo-Hookean
 // membrane + hinge bending, 64 × 64 squares of two triangles: each element is a triangle with
-// its share, about 1.5, of the hinges).
+// its share, about 1.5, of the hinges; and the same membrane with midedge bending, one 18-dof
+// element per triangle).
 //
 //   build/tests/benchmarks/assembly_benchmark
 #include <benchmark/benchmark.h>
@@ -70,9 +71,11 @@ struct TriangleFixture {
   std::unique_ptr<TriangleElasticTerm> term;
   std::vector<double> u;
   Mat H = nullptr;
-  TriangleFixture()
+  explicit TriangleFixture(
+      TriangleShellParameters::Bending bending = TriangleShellParameters::Bending::kHinge)
       : disc(make_triangle_rectangle(1, 1, 64, 64, 0, 0)), layout(PETSC_COMM_SELF, disc) {
     TriangleShellParameters p;
+    p.bending = bending;
     p.youngs_modulus = 9e6;
     p.poisson_ratio = 0.3;
     p.thickness = 0.66e-3;
@@ -94,6 +97,16 @@ void BM_TriangleEnergyGradientHessian(benchmark::State& s) { run<TriangleFixture
 BENCHMARK(BM_TriangleEnergy)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TriangleEnergyGradient)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TriangleEnergyGradientHessian)->Unit(benchmark::kMillisecond);
+
+struct MidedgeFixture : TriangleFixture {
+  MidedgeFixture() : TriangleFixture(TriangleShellParameters::Bending::kMidedge) {}
+};
+void BM_MidedgeEnergy(benchmark::State& s) { run<MidedgeFixture>(s, false, false); }
+void BM_MidedgeEnergyGradient(benchmark::State& s) { run<MidedgeFixture>(s, true, false); }
+void BM_MidedgeEnergyGradientHessian(benchmark::State& s) { run<MidedgeFixture>(s, true, true); }
+BENCHMARK(BM_MidedgeEnergy)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MidedgeEnergyGradient)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MidedgeEnergyGradientHessian)->Unit(benchmark::kMillisecond);
 
 void BM_ElasticEnergy(benchmark::State& s) { run<Fixture>(s, false, false); }
 void BM_ElasticEnergyGradient(benchmark::State& s) { run<Fixture>(s, true, false); }

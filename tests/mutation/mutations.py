@@ -94,6 +94,14 @@ MUTATIONS = [
      "PetscBool on = solver_type == \"pnewton\" ? PETSC_TRUE : PETSC_FALSE;",
      "PetscBool on = PETSC_FALSE;",
      "projected Newton without the PSD projection by default", ()),
+    ("midedge-free-edge", "src/physics/triangle/midedge_bending.cpp",
+     "if (nf > 0 && nw > 0) Kww -= Kwf * Kff.llt().solve(Kwf.transpose());",
+     "if (false) Kww -= Kwf * Kff.llt().solve(Kwf.transpose());",
+     "midedge bending: a free edge's tilt is held at zero instead of eliminated", ()),
+    ("midedge-clamp-half-angle", "src/physics/triangle/midedge_bending.cpp",
+     "scale[i] = (wings[i] == EdgeWing::kClamp ? 1.0 : 0.5) * height;",
+     "scale[i] = 0.5 * height;",
+     "midedge bending: a clamped edge's normal turns by half the angle to the clamp", ()),
 ]
 
 

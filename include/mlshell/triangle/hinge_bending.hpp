@@ -29,6 +29,15 @@ namespace mlshell {
 double dihedral_angle(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
                       const Eigen::Vector3d& x2, const Eigen::Vector3d& x3);
 
+/// θ of the file comment for x = (x0, x1, x2, x3) and, where the pointers are not null, its
+/// gradient and Hessian in the stacked positions (closed form, valid at θ ≈ 0 and θ ≈ ±π).
+/// False, writing nothing, for a zero edge or a zero normal.
+bool dihedral_angle_derivatives(const Eigen::Vector3d x[4], double& theta, Vector12* grad,
+                                Matrix12* hess);
+
+/// d wrapped into (−π, π] (the angle deviation θ − θ̄ of a hinge).
+double wrap_angle(double d);
+
 /// The bending stiffness k = E τ³ / (24 (1 − ν²)).
 double hinge_stiffness(double E, double nu, double thickness);
 

@@ -1,13 +1,18 @@
 // The energy terms of triangle-mesh shells (paper 2 §3, footnote 1), one class per effect:
 //
-//   elastic    Σ_t τ Ā_t ψ(Ā_t⁻¹A_t) + Σ_hinges 3k (θ − θ̄)² |ē|²/(Ā₁ + Ā₂)   membrane + bending
-//              ψ neo-Hookean or St. Venant–Kirchhoff (membrane.hpp), k = Eτ³/(24(1 − ν²))
+//   elastic    Σ_t τ Ā_t ψ(Ā_t⁻¹A_t) + bending                                 membrane + bending
+//              ψ neo-Hookean or St. Venant–Kirchhoff (membrane.hpp); bending either
+//              Σ_hinges 3k (θ − θ̄)² |ē|²/(Ā₁ + Ā₂), k = Eτ³/(24(1 − ν²)) (hinge_bending.hpp,
+//              paper 2) or Σ_t ½ δθᵀ K_t δθ over each triangle's three hinges (midedge_bending.hpp)
 //   inertia    1/(2 dt²) (u − û)ᵀ M (u − û), M the consistent P1 mass of the area density ρτ
 //              (also the proximal term ½h⁻²‖x − xᵗ‖²_M of quasistatics)
 //   pressure   −s(t) p (V(x) − V(X)), V the volume enclosed by a closed surface
 //   clamp      hinges between each clamped boundary edge's triangle and a virtual triangle,
 //              its rest mirror through the edge midpoint, moved with the clamp's motion: the
-//              boundary keeps its rest slope (θ̄ = 0) with the shell's own bending stiffness
+//              boundary keeps its rest slope (θ̄ = 0) with the shell's own bending stiffness;
+//              with midedge bending the clamp instead fixes the midedge normal of each clamped
+//              edge: the clamped triangle's element with that edge held minus the same element
+//              with it free (the elastic term's), a positive semi-definite difference
 // Loads and penalty Dirichlet conditions are the generic LinearLoadTerm and PenaltyTerm.
 // Positions are x = X + u for the reference positions X of the mesh.
 #pragma once
@@ -20,6 +25,7 @@
 #include "mlshell/energy_term.hpp"
 #include "mlshell/triangle/hinge_bending.hpp"
 #include "mlshell/triangle/membrane.hpp"
+#include "mlshell/triangle/midedge_bending.hpp"
 #include "mlshell/triangle/triangle_discretization.hpp"
 
 namespace mlshell {
@@ -27,7 +33,9 @@ namespace mlshell {
 /// Isotropic shell parameters of a triangle mesh.
 struct TriangleShellParameters {
   enum class Membrane { kNeoHookean, kStVenantKirchhoff };
+  enum class Bending { kHinge, kMidedge };
   Membrane membrane = Membrane::kNeoHookean;
+  Bending bending = Bending::kHinge;
   double youngs_modulus = 0.0;  ///< E, Pa
   double poisson_ratio = 0.0;   ///< ν
   double thickness = 0.0;       ///< τ, m
@@ -36,7 +44,23 @@ struct TriangleShellParameters {
   MembraneParameters lame() const;
 };
 
-/// Membrane energy of every triangle and bending energy of every hinge.
+/// A triangle's midedge element on the mesh: its vertices x0, x1, x2, then the vertex across
+/// each edge i (opposite x_i; −1 on the boundary), and the wing kinds (free on the boundary).
+struct MidedgeStencil {
+  std::array<int, 6> vertices;
+  std::array<EdgeWing, 3> wings;
+};
+MidedgeStencil midedge_stencil(const TriangleDiscretization& disc, int face);
+
+/// Adds one midedge element at positions x: its energy, and its gradient and Hessian on the
+/// slots whose local node is ≥ 0 (−1: a prescribed position, e.g. a clamp's virtual vertex);
+/// `project` projects the element Hessian onto the PSD cone first.
+PetscErrorCode add_midedge_element(const MidedgeRest& rest, const std::array<Eigen::Vector3d, 6>& x,
+                                   const std::array<PetscInt, 6>& nodes, bool project,
+                                   CompensatedSum& energy, std::vector<double>* grad, Mat hess);
+
+/// Membrane energy of every triangle and bending energy of every hinge (or of every triangle's
+/// midedge element).
 class TriangleElasticTerm final : public EnergyTerm {
  public:
   TriangleElasticTerm(const TriangleDiscretization& disc, const ParallelLayout& layout,
@@ -44,7 +68,8 @@ class TriangleElasticTerm final : public EnergyTerm {
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
   /// Per element this rank assembles (layout.local_elements() order): the largest principal
-  /// Green strain of the membrane and the bending energy (half of each of its hinges').
+  /// Green strain of the membrane and the bending energy (half of each of its hinges', or its
+  /// midedge element's).
   void face_fields(const std::vector<double>& u, std::vector<double>& strain,
                    std::vector<double>& bending) const;
   std::vector<std::string> face_field_names() const override {
@@ -66,12 +91,19 @@ class TriangleElasticTerm final : public EnergyTerm {
     HingeRest rest;
     std::array<int, 2> elements;  ///< indices into membranes_ (-1: not assembled here)
   };
+  struct Plate {
+    std::array<PetscInt, 6> nodes;  ///< local nodes; −1 across a free edge
+    MidedgeRest rest;
+  };
   Eigen::Vector3d position(const std::vector<double>& u, PetscInt node) const;
   double membrane_energy(const Membrane& m, const std::vector<double>& u, Vector9* g,
                          Matrix9* H) const;
+  void plate_positions(const Plate& p, const std::vector<double>& u,
+                       std::array<Eigen::Vector3d, 6>& x) const;
   std::vector<Membrane> membranes_;
   std::vector<Bend> hinges_;         // assembled here
   std::vector<Bend> shared_hinges_;  // owned by the rank of their first triangle; output only
+  std::vector<Plate> plates_;        // midedge bending: one per membrane, in the same order
   std::vector<Point3> reference_;    // X of the local points
   TriangleShellParameters params_;
   MembraneParameters lame_;
@@ -133,6 +165,30 @@ class ClampHingeTerm final : public EnergyTerm {
     HingeRest rest;
   };
   std::vector<Hinge> hinges_;
+  std::function<Eigen::Vector3d(double)> motion_;
+};
+
+/// The rotation part of a clamp with midedge bending: for each clamped triangle, its midedge
+/// element with the clamped edges' normals held by virtual vertices X_j + X_k − X_i + d(t),
+/// minus the elastic term's element of the same triangle with those edges free.
+class MidedgeClampTerm final : public EnergyTerm {
+ public:
+  /// `edges`: boundary edges (v0 → v1 in their triangle's direction) to clamp.
+  MidedgeClampTerm(std::string name, const TriangleDiscretization& disc,
+                   const ParallelLayout& layout, const std::vector<std::array<int, 2>>& edges,
+                   const TriangleShellParameters& params,
+                   std::function<Eigen::Vector3d(double)> motion);
+  PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
+                     std::vector<double>* grad, Mat hess) const override;
+
+ private:
+  struct Element {
+    std::array<PetscInt, 6> nodes;  ///< local nodes; −1 for virtual and free wings
+    std::array<Point3, 6> reference;
+    std::array<bool, 6> moves;  ///< a virtual vertex, moved with the clamp
+    MidedgeRest rest;           ///< held minus free
+  };
+  std::vector<Element> elements_;
   std::function<Eigen::Vector3d(double)> motion_;
 };
 

@@ -16,9 +16,11 @@ namespace mlshell {
 /// diagonal of cell (i, j) runs from its bottom-left corner when i + j is even, from its
 /// bottom-right corner otherwise), so the mesh has no preferred direction. Vertex (i, j), at
 /// (x0 + i·width/nx, y0 + j·height/ny), has index j·(nx + 1) + i. Groups "left", "right",
-/// "bottom" and "top" hold the vertices on each side (corners are in two groups).
+/// "bottom" and "top" hold the vertices on each side (corners are in two groups). With
+/// `uniform_diagonals` every diagonal runs from its cell's bottom-left corner instead, so the two
+/// triangles at every edge form a parallelogram.
 TriangleMesh make_triangle_rectangle(double width, double height, int nx, int ny, double x0 = 0.0,
-                                     double y0 = 0.0);
+                                     double y0 = 0.0, bool uniform_diagonals = false);
 
 /// The same rectangle as an unstructured Delaunay triangulation with edges of about
 /// edge_length, from CGAL's 2D constrained Delaunay mesher (minimum angle ≈ 20.7°). The sides

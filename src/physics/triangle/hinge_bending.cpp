@@ -46,15 +46,17 @@ double angle_of(const Eigen::Vector3d& e, const Eigen::Vector3d& n1, const Eigen
   return theta == -kPi ? kPi : theta;
 }
 
-// d wrapped into (−π, π]: std::remainder is exact and gives [−π, π].
+}  // namespace
+
+// std::remainder is exact and gives [−π, π].
 double wrap_angle(double d) {
   const double r = std::remainder(d, 2.0 * kPi);
   return r <= -kPi ? r + 2.0 * kPi : r;
 }
 
-/// θ with ∇θ and ∇²θ (either may be null) by the formulas of the file comment; false (nothing
-/// written) for a zero edge or normal.
-bool dihedral_derivatives(const Eigen::Vector3d x[4], double& theta, Vector12* g, Matrix12* H) {
+// θ with ∇θ and ∇²θ (either may be null) by the formulas of the file comment.
+bool dihedral_angle_derivatives(const Eigen::Vector3d x[4], double& theta, Vector12* g,
+                                Matrix12* H) {
   const Eigen::Vector3d e = x[1] - x[0];
   const double l2 = e.squaredNorm();
   const Eigen::Vector3d n[2] = {e.cross(x[2] - x[0]), (x[3] - x[0]).cross(e)};
@@ -97,13 +99,11 @@ bool dihedral_derivatives(const Eigen::Vector3d x[4], double& theta, Vector12* g
   return true;
 }
 
-}  // namespace
-
 double dihedral_angle(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
                       const Eigen::Vector3d& x2, const Eigen::Vector3d& x3) {
   const Eigen::Vector3d x[4] = {x0, x1, x2, x3};
   double theta = 0.0;
-  return dihedral_derivatives(x, theta, nullptr, nullptr) ? theta : 0.0;
+  return dihedral_angle_derivatives(x, theta, nullptr, nullptr) ? theta : 0.0;
 }
 
 // k = E τ³ / (24 (1 − ν²)).
@@ -138,7 +138,7 @@ double hinge_bending(const HingeRest& rest, const Eigen::Vector3d& x0, const Eig
   double theta = 0.0;
   Vector12 dtheta;
   Matrix12 ddtheta;
-  if (!dihedral_derivatives(x, theta, (grad || hess) ? &dtheta : nullptr,
+  if (!dihedral_angle_derivatives(x, theta, (grad || hess) ? &dtheta : nullptr,
                             hess ? &ddtheta : nullptr))
     return kInfinity;
   const double delta = wrap_angle(theta - rest.angle);

@@ -1,4 +1,4 @@
-// Membrane and hinge-bending energy of a triangle mesh (see triangle_effects.hpp).
+// Membrane and bending (hinge or midedge) energy of a triangle mesh (see triangle_effects.hpp).
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
@@ -27,6 +27,22 @@ TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
     element_index[f] = static_cast<int>(membranes_.size());
     membranes_.push_back(m);
   }
+  if (params.bending == TriangleShellParameters::Bending::kMidedge) {
+    // One element per owned triangle: its stencil holds the three wing vertices.
+    const double D = plate_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
+    for (int f : layout.local_elements()) {
+      const MidedgeStencil s = midedge_stencil(disc, f);
+      Plate p;
+      std::array<Eigen::Vector3d, 6> rest_positions;
+      for (int k = 0; k < 6; ++k) {
+        p.nodes[k] = s.vertices[k] >= 0 ? layout.local_of(s.vertices[k]) : -1;
+        rest_positions[k] = X[s.vertices[k] >= 0 ? s.vertices[k] : s.vertices[k - 3]];
+      }
+      p.rest = MidedgeRest::from(rest_positions, s.wings, D, params.poisson_ratio);
+      plates_.push_back(p);
+    }
+    return;
+  }
   // A hinge belongs to the rank of its first triangle, whose stencil holds all four vertices.
   const double k = hinge_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
   // Hinges whose second triangle only is here are kept for face_fields (its stencil holds the
@@ -40,6 +56,12 @@ TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
     b.elements = {element_index[h.faces[0]], element_index[h.faces[1]]};
     (owned ? hinges_ : shared_hinges_).push_back(b);
   }
+}
+
+// A free edge's wing slot holds any finite point (it is not used): its own corner.
+void TriangleElasticTerm::plate_positions(const Plate& p, const std::vector<double>& u,
+                                          std::array<Eigen::Vector3d, 6>& x) const {
+  for (int k = 0; k < 6; ++k) x[k] = position(u, p.nodes[k] >= 0 ? p.nodes[k] : p.nodes[k - 3]);
 }
 
 Eigen::Vector3d TriangleElasticTerm::position(const std::vector<double>& u, PetscInt node) const {
@@ -75,6 +97,11 @@ PetscErrorCode TriangleElasticTerm::add(const std::vector<double>& u, Compensate
       PetscCall(add_local_hessian(hess, nodes, H9.data()));  // symmetric: row = column major
     }
   }
+  std::array<Eigen::Vector3d, 6> x;
+  for (const Plate& p : plates_) {
+    plate_positions(p, u, x);
+    PetscCall(add_midedge_element(p.rest, x, p.nodes, projects_hessian(), energy, grad, hess));
+  }
   Vector12 g12;
   Matrix12 H12;
   nodes.resize(4);
@@ -109,6 +136,11 @@ void TriangleElasticTerm::face_fields(const std::vector<double>& u, std::vector<
         0.5 * (m.rest.metric_inverse * (D.transpose() * D) - Eigen::Matrix2d::Identity());
     const Eigen::Vector2cd ev = G.eigenvalues();
     strain[i] = std::max(ev[0].real(), ev[1].real());
+  }
+  std::array<Eigen::Vector3d, 6> x;
+  for (size_t i = 0; i < plates_.size(); ++i) {
+    plate_positions(plates_[i], u, x);
+    bending[i] = midedge_bending(plates_[i].rest, x, nullptr, nullptr);
   }
   for (const auto* list : {&hinges_, &shared_hinges_})
     for (const Bend& b : *list) {

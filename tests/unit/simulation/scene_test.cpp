@@ -599,6 +599,20 @@ TEST(SceneErrors, EveryBadFixtureIsRejected) {
   EXPECT_GE(count, 14);
 }
 
+// Triangle-shell keys name the key, the value and what is allowed.
+TEST(SceneErrors, TriangleBendingAndDiagonals) {
+  const std::string bending = scene_error(kData / "bad" / "triangle_unknown_bending.yaml");
+  EXPECT_NE(bending.find("material.bending: unknown bending model; got 'kirchhoff'"),
+            std::string::npos)
+      << bending;
+  EXPECT_NE(bending.find("hinge"), std::string::npos) << bending;
+  EXPECT_NE(bending.find("midedge"), std::string::npos) << bending;
+  const std::string diagonals = scene_error(kData / "bad" / "triangle_diagonals_unstructured.yaml");
+  EXPECT_NE(diagonals.find("geometry.mesh.diagonals: applies to structured rectangles"),
+            std::string::npos)
+      << diagonals;
+}
+
 /// Defects that need no fixture of their own: each case replaces one part of a valid scene.
 TEST(SceneErrors, InlineDefects) {
   struct Case {
@@ -839,6 +853,8 @@ TEST(SceneFormatHelp, NamesEveryKey) {
                           "thickness:",
                           "density:",
                           "thickness_points:",
+                          "bending: hinge | midedge",
+                          "diagonals:",
                           "effects:",
                           "inertia",
                           "gravity:",

@@ -1,5 +1,6 @@
 // Triangle shells on 1 and 2 ranks give the same answer to round-off (run under mpiexec -n 2,
-// ctest mpi.two_ranks): energy, gradient and Hessian of every effect, the per-face output
+// ctest mpi.two_ranks): energy, gradient and Hessian of every effect (hinge and midedge
+// bending), the per-face output
 // fields, and a quasistatic solve's final state, compared in natural order with the same problem
 // built on PETSC_COMM_SELF on each rank.
 #include <cmath>
@@ -66,6 +67,13 @@ TEST(MpiTriangleShell, EnergyGradientHessianAndFieldsAgreeWithOneRank) {
   ASSERT_GE(size, 2) << "run under mpiexec -n 2";
   for (const char* yaml :
        {kScene,
+        // Midedge bending with clamps on two sides (a corner triangle with two held edges).
+        "geometry: {mesh: {generator: rectangle, size: [1, 1], edge_length: 0.1}}\n"
+        "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, "
+        "thickness: 0.01, volume_density: 500, bending: midedge}\n"
+        "effects:\n  - gravity\n  - clamp: {where: boundary(bottom), motion: {translate: "
+        "[0, 0, 0.1], over: [0, 1]}}\n  - clamp: {where: boundary(left)}\n"
+        "time: {dt: 0.5, steps: 2}\n",
         "geometry: {mesh: {generator: sphere, radius: 1, subdivisions: 2}}\n"
         "material: {model: st-venant-kirchhoff, youngs_modulus: 1.0e6, poisson_ratio: 0.3, "
         "thickness: 0.01, volume_density: 500}\n"

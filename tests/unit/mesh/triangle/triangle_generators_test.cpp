@@ -102,6 +102,25 @@ TEST(TriangleGenerators, RectangleDiagonalsAlternate) {
       EXPECT_EQ(valence[j * (nx + 1) + i], (i + j) % 2 == 0 ? 8 : 4) << i << ", " << j;
 }
 
+// Uniform diagonals: every interior vertex has valence 6, and the two triangles at every
+// interior edge form a parallelogram (x2 + x3 = x0 + x1 for each hinge), the property midedge
+// bending needs to reproduce every constant curvature.
+TEST(TriangleGenerators, RectangleUniformDiagonalsMakeParallelograms) {
+  const int nx = 6, ny = 5;
+  const TriangleMesh m = make_triangle_rectangle(1.2, 1.0, nx, ny, 0.5, -0.3, true);
+  const TriangleTopology t(m);
+  EXPECT_EQ(m.num_triangles(), 2 * nx * ny);
+  std::vector<int> valence(m.num_points(), 0);
+  for (const TriangleEdge& e : t.edges()) ++valence[e.v[0]], ++valence[e.v[1]];
+  for (int j = 1; j < ny; ++j)
+    for (int i = 1; i < nx; ++i) EXPECT_EQ(valence[j * (nx + 1) + i], 6) << i << ", " << j;
+  for (const Hinge& h : t.hinges()) {
+    const Point3 mismatch =
+        m.points[h.v[2]] + m.points[h.v[3]] - m.points[h.v[0]] - m.points[h.v[1]];
+    EXPECT_LT(mismatch.norm(), 1e-14) << h.v[0] << "-" << h.v[1];
+  }
+}
+
 TEST(TriangleGenerators, RectangleSideGroups) {
   const TriangleMesh m = make_triangle_rectangle(2.0, 1.0, 4, 3, 1.0, 1.0);
   ASSERT_EQ(m.groups.size(), 4u);
