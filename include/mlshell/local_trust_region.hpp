@@ -32,7 +32,7 @@ namespace mlshell {
 /// η₁, η₂, γ₁, γ₂ of Table 2, and the radius update they define.
 struct TrustRegionParameters {
   PetscReal eta1 = 0.1, eta2 = 0.75, gamma1 = 0.5, gamma2 = 2.0;
-  /// The radius after a step of length ‖s‖ with ratio ρ: shrink to γ₁·min(Δ, ‖s‖) when ρ ≤ η₁,
+  /// The radius after a step of length ‖s‖ with ratio ρ: shrink to γ₁Δ when ρ ≤ η₁,
   /// expand to γ₂Δ (at most 1e30) when ρ > η₂, else keep Δ (the standard half of Alg. 4.3).
   PetscReal updated_radius(PetscReal rho, PetscReal delta, PetscReal step_norm) const;
   /// Raises PETSC_ERR_ARG_OUTOFRANGE unless 0 < η₁ < η₂ < 1 and 0 < γ₁ < 1 < γ₂.
