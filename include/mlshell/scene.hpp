@@ -116,8 +116,8 @@ struct SvkMaterial {
 struct TriangleMaterial {
   bool neo_hookean = true;
   bool midedge_bending = false;  ///< `bending: midedge` (default: hinge)
-  double youngs_modulus = 0.0;  ///< Pa, > 0
-  double poisson_ratio = 0.0;   ///< in (-1, 0.5)
+  double youngs_modulus = 0.0;   ///< Pa, > 0
+  double poisson_ratio = 0.0;    ///< in (-1, 0.5)
 };
 
 struct MaterialSpec {

@@ -120,8 +120,9 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
       const std::string name = d->string();
       d->check(name == "alternating" || name == "uniform", "unknown diagonal pattern",
                "alternating (criss-cross, the default) or uniform (all bottom-left to top-right)");
-      d->check(!mesh.find("edge_length"), "applies to structured rectangles (faces), not to "
-                                          "unstructured ones (edge_length)");
+      d->check(!mesh.find("edge_length"),
+               "applies to structured rectangles (faces), not to "
+               "unstructured ones (edge_length)");
       spec.uniform_diagonals = name == "uniform";
     }
     if (const auto size = mesh.find("size")) spec.size = read_size(*size);

@@ -65,8 +65,7 @@ TriangleMesh build_triangle_mesh(const TriangleMeshSpec& s) {
       return s.edge_length ? make_unstructured_rectangle(s.size[0], s.size[1], *s.edge_length,
                                                          s.origin[0], s.origin[1])
                            : make_triangle_rectangle(s.size[0], s.size[1], s.faces[0], s.faces[1],
-                                                     s.origin[0], s.origin[1],
-                                                     s.uniform_diagonals);
+                                                     s.origin[0], s.origin[1], s.uniform_diagonals);
     case G::kCylinder:
       return make_cylinder(s.radius, s.length, s.faces[0], s.faces[1]);
     case G::kDome:
@@ -162,15 +161,15 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
       if (params.bending == TriangleShellParameters::Bending::kMidedge) {
         TriangleShellParameters held = params;
         if (c->rotation_penalty)  // D = rotation_penalty
-          held.youngs_modulus *= *c->rotation_penalty /
-                                 plate_stiffness(params.youngs_modulus, params.poisson_ratio,
-                                                 params.thickness);
+          held.youngs_modulus *=
+              *c->rotation_penalty /
+              plate_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
         problem->add_term(std::make_unique<MidedgeClampTerm>(
             name + "_rotation", disc, layout, edges, held, motion_function(c->motion)));
       } else {
         const double stiffness = c->rotation_penalty ? *c->rotation_penalty : k;
-        problem->add_term(std::make_unique<ClampHingeTerm>(
-            name + "_rotation", disc, layout, edges, stiffness, motion_function(c->motion)));
+        problem->add_term(std::make_unique<ClampHingeTerm>(name + "_rotation", disc, layout, edges,
+                                                           stiffness, motion_function(c->motion)));
       }
     } else if (const auto* p = std::get_if<PressureEffect>(&effect)) {
       if (!disc.topology().closed())

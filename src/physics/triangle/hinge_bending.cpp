@@ -139,7 +139,7 @@ double hinge_bending(const HingeRest& rest, const Eigen::Vector3d& x0, const Eig
   Vector12 dtheta;
   Matrix12 ddtheta;
   if (!dihedral_angle_derivatives(x, theta, (grad || hess) ? &dtheta : nullptr,
-                            hess ? &ddtheta : nullptr))
+                                  hess ? &ddtheta : nullptr))
     return kInfinity;
   const double delta = wrap_angle(theta - rest.angle);
   const double energy = rest.weight * delta * delta;

@@ -108,30 +108,31 @@ TEST(TriangleShell, EveryEffectMatchesFiniteDifferencesOnItsOwnScale) {
   // Hinge bending; midedge bending with a second clamp, so that the corner triangle at the
   // bottom right has two held edges.
   for (const std::string bending : {"hinge", "midedge"}) {
-  std::string material = kMaterial;
-  material.insert(material.rfind('}'), ", bending: " + bending);
-  const Scene scene = triangle_scene(
-      "fd",
-      std::string("geometry: {mesh: {generator: rectangle, size: [1, 0.5], faces: [4, 3]}}\n") +
-          material +
-          (bending == "midedge" ? "effects:\n  - clamp: {where: boundary(right)}\n" : "effects:\n") +
-          "  - inertia\n"
-          "  - gravity: [0, 0, -9.81]\n"
-          "  - surface_load: {force_per_area: [0, 1, 2]}\n"
-          "  - line_load: {where: boundary(right), force_per_length: [0, 0, 1]}\n"
-          "  - point_load: {where: corner(top-right), force: [1, 0, 0]}\n"
-          "  - dirichlet: {where: boundary(left), motion: {translate: [0, 0, 0.1], "
-          "over: [0, 1]}}\n"
-          "  - clamp: {where: boundary(bottom), motion: {translate: [0, 0.05, 0.02], "
-          "over: [0, 1]}}\n"
-          "time: {dt: 0.5, steps: 2}\n");
-  TriangleProblem tp(scene, PETSC_COMM_SELF);
-  std::vector<double> pred = random_displacement(3 * tp.disc().num_points(), 0.02, 5);
-  StepStart start{0.5, &pred};
-  for (const auto& t : tp.problem->terms()) t->begin_step(start);
-  const auto u = random_displacement(3 * tp.disc().num_points(), 0.05, 3);
-  for (const auto& t : tp.problem->terms())
-    expect_derivatives(tp, *t, u, 1e-6, bending + " " + t->name());
+    std::string material = kMaterial;
+    material.insert(material.rfind('}'), ", bending: " + bending);
+    const Scene scene = triangle_scene(
+        "fd",
+        std::string("geometry: {mesh: {generator: rectangle, size: [1, 0.5], faces: [4, 3]}}\n") +
+            material +
+            (bending == "midedge" ? "effects:\n  - clamp: {where: boundary(right)}\n"
+                                  : "effects:\n") +
+            "  - inertia\n"
+            "  - gravity: [0, 0, -9.81]\n"
+            "  - surface_load: {force_per_area: [0, 1, 2]}\n"
+            "  - line_load: {where: boundary(right), force_per_length: [0, 0, 1]}\n"
+            "  - point_load: {where: corner(top-right), force: [1, 0, 0]}\n"
+            "  - dirichlet: {where: boundary(left), motion: {translate: [0, 0, 0.1], "
+            "over: [0, 1]}}\n"
+            "  - clamp: {where: boundary(bottom), motion: {translate: [0, 0.05, 0.02], "
+            "over: [0, 1]}}\n"
+            "time: {dt: 0.5, steps: 2}\n");
+    TriangleProblem tp(scene, PETSC_COMM_SELF);
+    std::vector<double> pred = random_displacement(3 * tp.disc().num_points(), 0.02, 5);
+    StepStart start{0.5, &pred};
+    for (const auto& t : tp.problem->terms()) t->begin_step(start);
+    const auto u = random_displacement(3 * tp.disc().num_points(), 0.05, 3);
+    for (const auto& t : tp.problem->terms())
+      expect_derivatives(tp, *t, u, 1e-6, bending + " " + t->name());
   }
 }
 

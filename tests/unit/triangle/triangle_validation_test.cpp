@@ -20,6 +20,16 @@ using namespace mlshell;
 
 namespace {
 
+/// The scene in `yaml` solved on one rank, its output in a temporary folder named after `name`.
+SolvedScene solve_serial(const std::string& name, const char* yaml) {
+  const Scene scene = triangle_scene(name, yaml);
+  SolvedScene solved =
+      solve_scene(scene, PETSC_COMM_SELF,
+                  (std::filesystem::temp_directory_path() / ("mlshell_" + name)).string());
+  EXPECT_EQ(solved.status, 0) << name;
+  return solved;
+}
+
 /// Tip deflection of a 1 m × 0.1 m strip, 1 cm thick, E = 1e7 Pa, clamped on the left, under
 /// an end load P = 2.5e-4 N spread along the right side (Euler–Bernoulli: 1e-3 m).
 double cantilever_tip(int nx, int ny, double* expected, const char* bending = "hinge") {
@@ -36,12 +46,7 @@ double cantilever_tip(int nx, int ny, double* expected, const char* bending = "h
                 "  - line_load: {where: boundary(right), force_per_length: [0, 0, %.17g]}\n"
                 "time: {dt: 1, steps: 1}\n",
                 nx, ny, E, tau, bending, -P / b);
-  const Scene scene = triangle_scene("cantilever", yaml);
-  const SolvedScene solved = solve_scene(
-      scene, PETSC_COMM_SELF,
-      (std::filesystem::temp_directory_path() / ("mlshell_cantilever_" + std::to_string(nx)))
-          .string());
-  EXPECT_EQ(solved.status, 0);
+  const SolvedScene solved = solve_serial("cantilever_" + std::to_string(nx), yaml);
   const auto& disc = solved.simulation->discretization();
   double sum = 0.0;
   int count = 0;
@@ -68,12 +73,7 @@ double clamped_plate_centre(int n, const char* diagonals, const char* bending, d
                 "  - surface_load: {force_per_area: [0, 0, %g]}\n"
                 "time: {dt: 1, steps: 1}\n",
                 n, n, diagonals, E, nu, tau, bending, -q);
-  const Scene scene = triangle_scene("clamped_plate", yaml);
-  const SolvedScene solved = solve_scene(
-      scene, PETSC_COMM_SELF,
-      (std::filesystem::temp_directory_path() / ("mlshell_clamped_plate_" + std::to_string(n)))
-          .string());
-  EXPECT_EQ(solved.status, 0);
+  const SolvedScene solved = solve_serial("clamped_plate_" + std::to_string(n), yaml);
   const auto& disc = solved.simulation->discretization();
   for (int i = 0; i < disc.num_points(); ++i)
     if ((disc.points()[i] - Point3(0.5, 0.5, 0.0)).norm() < 1e-12)
@@ -141,10 +141,11 @@ TEST(TriangleValidation, CantileverWithMidedgeBendingMatchesEulerBernoulli) {
   const double tips[3] = {cantilever_tip(20, 2, &expected, "midedge"),
                           cantilever_tip(40, 4, &expected, "midedge"),
                           cantilever_tip(80, 8, &expected, "midedge")};
-  std::printf("midedge cantilever tip: %.6e (20x2), %.6e (40x4), %.6e (80x8); Euler-Bernoulli "
-              "%.6e; ratios %.4f %.4f %.4f\n",
-              tips[0], tips[1], tips[2], expected, tips[0] / expected, tips[1] / expected,
-              tips[2] / expected);
+  std::printf(
+      "midedge cantilever tip: %.6e (20x2), %.6e (40x4), %.6e (80x8); Euler-Bernoulli "
+      "%.6e; ratios %.4f %.4f %.4f\n",
+      tips[0], tips[1], tips[2], expected, tips[0] / expected, tips[1] / expected,
+      tips[2] / expected);
   for (double tip : tips) EXPECT_NEAR(tip / expected, 1.0, 0.03);
   EXPECT_LE(std::abs(tips[2] - expected), std::abs(tips[0] - expected));
 }
@@ -159,10 +160,11 @@ TEST(TriangleValidation, ClampedPlateWithMidedgeBendingConvergesToKirchhoff) {
                        clamped_plate_centre(16, "uniform", "midedge", &expected),
                        clamped_plate_centre(32, "uniform", "midedge", &expected)};
   const double alternating = clamped_plate_centre(32, "alternating", "midedge", &expected);
-  std::printf("clamped plate centre, midedge: %.6e (8), %.6e (16), %.6e (32) uniform diagonals, "
-              "%.6e (32) alternating; Kirchhoff %.6e; ratios %.4f %.4f %.4f, %.4f\n",
-              w[0], w[1], w[2], alternating, expected, w[0] / expected, w[1] / expected,
-              w[2] / expected, alternating / expected);
+  std::printf(
+      "clamped plate centre, midedge: %.6e (8), %.6e (16), %.6e (32) uniform diagonals, "
+      "%.6e (32) alternating; Kirchhoff %.6e; ratios %.4f %.4f %.4f, %.4f\n",
+      w[0], w[1], w[2], alternating, expected, w[0] / expected, w[1] / expected, w[2] / expected,
+      alternating / expected);
   EXPECT_LT(std::abs(w[2] - expected), std::abs(w[1] - expected));
   EXPECT_LT(std::abs(w[1] - expected), std::abs(w[0] - expected));
   EXPECT_NEAR(w[2] / expected, 1.0, 0.03);

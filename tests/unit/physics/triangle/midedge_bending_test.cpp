@@ -59,11 +59,9 @@ double area(const Points& X) { return 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).nor
 
 void expect_element_derivatives(const MidedgeRest& rest, const Points& x, double length,
                                 const std::string& where) {
-  expect_derivatives<18>(
-      [&](const Vector18& y, Vector18* g, Matrix18* H) {
-        return midedge_bending(rest, unstack(y), g, H);
-      },
-      stack(x), length, where);
+  expect_derivatives<18>([&](const Vector18& y, Vector18* g,
+                             Matrix18* H) { return midedge_bending(rest, unstack(y), g, H); },
+                         stack(x), length, where);
 }
 
 }  // namespace
@@ -86,10 +84,14 @@ TEST(MidedgeBending, KirchhoffEnergyOfConstantCurvatureOnParallelogramPatches) {
       const Points X = parallelogram_patch(a, b);
       const MidedgeRest rest = MidedgeRest::from(X, {kN, kN, kN}, D, nu);
       Eigen::Matrix2d k;
-      if (trial == 0) k << kappa, 0, 0, 0;            // cylinder along x
-      else if (trial == 1) k << 0, 0, 0, kappa;       // cylinder along y
-      else if (trial == 2) k << kappa, 0, 0, kappa;   // sphere
-      else if (trial == 3) k << 0, kappa, kappa, 0;   // saddle (pure twist)
+      if (trial == 0)
+        k << kappa, 0, 0, 0;  // cylinder along x
+      else if (trial == 1)
+        k << 0, 0, 0, kappa;  // cylinder along y
+      else if (trial == 2)
+        k << kappa, 0, 0, kappa;  // sphere
+      else if (trial == 3)
+        k << 0, kappa, kappa, 0;  // saddle (pure twist)
       else {
         const double k11 = kappa * u(rng), k12 = kappa * u(rng), k22 = kappa * u(rng);
         k << k11, k12, k12, k22;
@@ -101,7 +103,8 @@ TEST(MidedgeBending, KirchhoffEnergyOfConstantCurvatureOnParallelogramPatches) {
       const Eigen::Matrix3d R = random_rotation(rng);
       for (auto& p : x) p = R * p + Eigen::Vector3d(1, -2, 3);
       EXPECT_NEAR(midedge_bending(rest, x, nullptr, nullptr), expected, 1e-6 * std::abs(expected))
-          << "nu " << nu << " trial " << trial << "\n" << k;
+          << "nu " << nu << " trial " << trial << "\n"
+          << k;
     }
   }
 }
