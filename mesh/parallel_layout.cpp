@@ -176,7 +176,33 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
   PetscCall(MatSetNearNullSpace(*A, rigid));
   PetscCall(MatNullSpaceDestroy(&rigid));
   PetscCall(VecDestroy(&coordinates));
+  PetscCall(attach_vertex_patches(*A, vertex_patches()));
   PetscFunctionReturn(0);
+}
+
+// Neighbours across the faces around a point: the corners of every face (ghost faces
+// included) that has the point as a corner.
+std::shared_ptr<const VertexPatches> ParallelLayout::vertex_patches() const {
+  if (patches_) return patches_;
+  auto p = std::make_shared<VertexPatches>();
+  p->blocks.resize(local_points_.size());
+  for (size_t i = 0; i < local_points_.size(); ++i)
+    p->blocks[i] = petsc_of_natural_[local_points_[i]];
+  std::vector<std::vector<int>> faces_of(disc_.num_points());
+  for (int f = 0; f < disc_.num_faces(); ++f)
+    for (int v : disc_.corners(f)) faces_of[v].push_back(f);
+  p->patches.resize(num_owned_);
+  for (int i = 0; i < num_owned_; ++i) {
+    const int v = local_points_[i];
+    std::set<int> members;
+    for (int f : faces_of[v])
+      for (int w : disc_.corners(f))
+        if (w != v && local_of_natural_[w] >= 0) members.insert(local_of_natural_[w]);
+    p->patches[i].push_back(i);
+    p->patches[i].insert(p->patches[i].end(), members.begin(), members.end());
+  }
+  patches_ = std::move(p);
+  return patches_;
 }
 
 PetscErrorCode ParallelLayout::create_coordinates(Vec* x) const {

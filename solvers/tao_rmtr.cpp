@@ -30,6 +30,8 @@
 //        least squares (IᵀI)⁻¹Iᵀ, or restriction scaled to preserve constants (diag(R1)⁻¹R)
 //   -tao_rmtr_smoother_qp stcg|dogleg   -tao_rmtr_coarse_qp dogleg|stcg
 //   -tao_rmtr_stcg_max_it 10         STCG iterations per smoothing step
+//   -tao_rmtr_smoother_pc none       preconditioner of the STCG smoother: none (the paper), or
+//                                    vpatch (vertex-patch Schwarz, vertex_patch_pc.hpp), or any PC
 //   -tao_rmtr_monitor                one line per V-cycle
 //   per-level QP options, PCMG style: -rmtr_levels_<l>_ksp_max_it, -rmtr_levels_<l>_pc_type ...
 //   for levels l ≥ 1 and -rmtr_coarse_pc_factor_mat_solver_type mumps ... for level 0.
@@ -72,6 +74,7 @@ struct RmtrContext {
   MultilevelObjective* hierarchy = nullptr;
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0;
+  char smoother_pc[64] = "none";
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
@@ -101,9 +104,9 @@ void destroy_levels(RmtrContext& c) {
 }
 
 std::unique_ptr<TrustRegionQp> make_qp(MPI_Comm comm, PetscInt kind, const std::string& prefix,
-                                       PetscInt stcg_max_it) {
+                                       PetscInt stcg_max_it, const char* pc_type) {
   if (kind == 0) return std::make_unique<DoglegQp>(comm, prefix);
-  return std::make_unique<SteihaugTointQp>(comm, prefix, static_cast<int>(stcg_max_it));
+  return std::make_unique<SteihaugTointQp>(comm, prefix, static_cast<int>(stcg_max_it), pc_type);
 }
 
 PetscErrorCode setup(Tao tao) {
@@ -154,7 +157,8 @@ PetscErrorCode setup(Tao tao) {
     }
     lv.tr = std::make_unique<LocalTrustRegion>(
         *lv.objective, like, lv.H,
-        make_qp(comm, l == 0 ? c->coarse_qp : c->smoother_qp, qp_prefix, c->stcg_max_it),
+        make_qp(comm, l == 0 ? c->coarse_qp : c->smoother_qp, qp_prefix, c->stcg_max_it,
+                l == 0 ? PCNONE : c->smoother_pc),
         std::move(norm));
     PetscCall(VecGetSize(like, &lv.stats.dofs));
   }
@@ -402,6 +406,9 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsEnum("-tao_rmtr_projection", "projection of iterates to coarser levels", "",
                              kProjectionNames, static_cast<PetscEnum>(c->projection),
                              reinterpret_cast<PetscEnum*>(&c->projection), nullptr));
+  PetscCall(PetscOptionsString("-tao_rmtr_smoother_pc",
+                               "preconditioner of STCG above the coarsest level (none, vpatch, ...)",
+                               "", c->smoother_pc, c->smoother_pc, sizeof c->smoother_pc, nullptr));
   PetscCall(PetscOptionsEnum("-tao_rmtr_smoother_qp", "QP solver above the coarsest level", "",
                              kQpNames, static_cast<PetscEnum>(c->smoother_qp),
                              reinterpret_cast<PetscEnum*>(&c->smoother_qp), nullptr));
@@ -449,11 +456,11 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
   PetscCall(PetscViewerASCIIPrintf(viewer,
                                    "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT
                                    ", mu2 = %" PetscInt_FMT ", coarsest %" PetscInt_FMT
-                                   " step(s) of %s, smoother %s (%" PetscInt_FMT " iterations), "
-                                   "projection %s\n",
+                                   " step(s) of %s, smoother %s (%" PetscInt_FMT " iterations, "
+                                   "PC %s), projection %s\n",
                                    n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1,
                                    c->mu2, c->coarse_max_it, kQpNames[c->coarse_qp],
-                                   kQpNames[c->smoother_qp], c->stcg_max_it,
+                                   kQpNames[c->smoother_qp], c->stcg_max_it, c->smoother_pc,
                                    kProjectionNames[c->projection]));
   PetscCall(PetscViewerASCIIPrintf(
       viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",

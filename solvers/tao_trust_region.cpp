@@ -24,6 +24,7 @@
 #include "mlshell/local_trust_region.hpp"
 #include "mlshell/trust_region.hpp"
 #include "tao_objective.hpp"
+#include "mlshell/vertex_patch_pc.hpp"
 #include "tao_registration.hpp"
 
 namespace mlshell {
@@ -181,6 +182,7 @@ PetscErrorCode register_trust_region_tao_types() {
   if (!registered) {
     PetscCall(TaoRegister("tr", create));
     PetscCall(register_rmtr_tao_type());
+    PetscCall(register_vertex_patch_pc());
   }
   registered = true;
   PetscFunctionReturn(0);

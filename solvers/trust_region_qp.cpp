@@ -211,14 +211,15 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
 // ---------------------------------------------------------------------------------------------
 // Steihaug–Toint CG
 
-SteihaugTointQp::SteihaugTointQp(MPI_Comm comm, const std::string& prefix, int max_iterations) {
+SteihaugTointQp::SteihaugTointQp(MPI_Comm comm, const std::string& prefix, int max_iterations,
+                                 const char* pc_type) {
   PetscCallAbort(comm, KSPCreate(comm, &ksp_));
   PetscCallAbort(comm, KSPSetOptionsPrefix(ksp_, prefix.c_str()));
   PetscCallAbort(comm, KSPSetType(ksp_, KSPSTCG));
   PetscCallAbort(comm, KSPSetTolerances(ksp_, 1e-10, PETSC_DEFAULT, PETSC_DEFAULT, max_iterations));
   PC pc;
   PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
-  PetscCallAbort(comm, PCSetType(pc, PCNONE));
+  PetscCallAbort(comm, PCSetType(pc, pc_type));
   PetscCallAbort(comm, KSPSetFromOptions(ksp_));
 }
 

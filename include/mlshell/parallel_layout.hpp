@@ -11,9 +11,11 @@
 #include <petscmat.h>
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "mlshell/discretization.hpp"
+#include "mlshell/vertex_patches.hpp"
 
 namespace mlshell {
 
@@ -49,8 +51,11 @@ class ParallelLayout {
   PetscErrorCode create_vector(Vec* v) const;
   /// A block-size-3 AIJ matrix preallocated for the element stencils and the given extra
   /// point pairs (natural indices, coupled both ways), local-to-global mapping set, with the six
-  /// rigid-body modes as near-nullspace (for algebraic multigrid).
+  /// rigid-body modes as near-nullspace (for algebraic multigrid) and the vertex patches (for
+  /// PC "vpatch").
   PetscErrorCode create_matrix(Mat* A, const std::vector<std::array<int, 2>>& extra = {}) const;
+  /// The vertex patches of the owned points (vertex_patches.hpp); built on first use.
+  std::shared_ptr<const VertexPatches> vertex_patches() const;
   /// Reference coordinates of the owned points (block size 3), e.g. for rigid-body modes.
   PetscErrorCode create_coordinates(Vec* x) const;
   /// Global → local (owned + ghost) values.
@@ -72,6 +77,7 @@ class ParallelLayout {
   ISLocalToGlobalMapping l2g_ = nullptr;
   Vec local_work_ = nullptr, global_template_ = nullptr, natural_work_ = nullptr;
   VecScatter to_local_ = nullptr, to_natural_ = nullptr;
+  mutable std::shared_ptr<const VertexPatches> patches_;
 };
 
 }  // namespace mlshell

@@ -16,7 +16,8 @@
 //    a step is never NaN.
 //  * Steihaug–Toint CG: PETSc's KSPSTCG with the radius, a maximum iteration count (10 as a
 //    smoother) and the model value from KSPCGGetObjFcn; it stops at the boundary on negative
-//    curvature.
+//    curvature. With a preconditioner M (symmetric positive definite, e.g. PC "vpatch") the
+//    iteration is preconditioned CG and the radius bounds ‖s‖_M (PETSc's STCG).
 #pragma once
 
 #include <petscksp.h>
@@ -59,7 +60,10 @@ class DoglegQp final : public TrustRegionQp {
 
 class SteihaugTointQp final : public TrustRegionQp {
  public:
-  SteihaugTointQp(MPI_Comm comm, const std::string& prefix, int max_iterations);
+  /// `pc_type`: the preconditioner (PCNONE: plain CG, as in the paper); `<prefix>pc_type`
+  /// overrides it.
+  SteihaugTointQp(MPI_Comm comm, const std::string& prefix, int max_iterations,
+                  const char* pc_type = PCNONE);
   ~SteihaugTointQp() override;
   PetscErrorCode set_operator(Mat H) override;
   PetscErrorCode solve(Vec g, PetscReal radius, Vec s, QpResult& result) override;

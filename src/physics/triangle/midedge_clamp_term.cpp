@@ -29,11 +29,14 @@ MidedgeClampTerm::MidedgeClampTerm(std::string name, const TriangleDiscretizatio
     Element e;
     std::array<Eigen::Vector3d, 6> rest_positions;
     std::array<EdgeWing, 3> wings = s.wings;
-    for (int k = 0; k < 6; ++k) {
-      e.nodes[k] = s.vertices[k] >= 0 ? layout.local_of(s.vertices[k]) : -1;
-      e.reference[k] = s.vertices[k] >= 0 ? X[s.vertices[k]] : X[s.vertices[k - 3]];
-      e.moves[k] = false;
+    for (int i = 0; i < 3; ++i) {
+      const int wing = s.vertices[3 + i];
+      e.nodes[i] = layout.local_of(s.vertices[i]);
+      e.nodes[3 + i] = wing >= 0 ? layout.local_of(wing) : -1;
+      e.reference[i] = X[s.vertices[i]];
+      e.reference[3 + i] = X[wing >= 0 ? wing : s.vertices[i]];
     }
+    e.moves.fill(false);
     for (int i = 0; i < 3; ++i) {
       if (!held[i]) continue;
       // The rest mirror of x_i through the midpoint of edge i.

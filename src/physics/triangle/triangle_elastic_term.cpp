@@ -34,9 +34,12 @@ TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
       const MidedgeStencil s = midedge_stencil(disc, f);
       Plate p;
       std::array<Eigen::Vector3d, 6> rest_positions;
-      for (int k = 0; k < 6; ++k) {
-        p.nodes[k] = s.vertices[k] >= 0 ? layout.local_of(s.vertices[k]) : -1;
-        rest_positions[k] = X[s.vertices[k] >= 0 ? s.vertices[k] : s.vertices[k - 3]];
+      for (int i = 0; i < 3; ++i) {
+        const int wing = s.vertices[3 + i];
+        p.nodes[i] = layout.local_of(s.vertices[i]);
+        p.nodes[3 + i] = wing >= 0 ? layout.local_of(wing) : -1;
+        rest_positions[i] = X[s.vertices[i]];
+        rest_positions[3 + i] = X[wing >= 0 ? wing : s.vertices[i]];
       }
       p.rest = MidedgeRest::from(rest_positions, s.wings, D, params.poisson_ratio);
       plates_.push_back(p);
@@ -61,7 +64,10 @@ TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
 // A free edge's wing slot holds any finite point (it is not used): its own corner.
 void TriangleElasticTerm::plate_positions(const Plate& p, const std::vector<double>& u,
                                           std::array<Eigen::Vector3d, 6>& x) const {
-  for (int k = 0; k < 6; ++k) x[k] = position(u, p.nodes[k] >= 0 ? p.nodes[k] : p.nodes[k - 3]);
+  for (int i = 0; i < 3; ++i) {
+    x[i] = position(u, p.nodes[i]);
+    x[3 + i] = position(u, p.nodes[3 + i] >= 0 ? p.nodes[3 + i] : p.nodes[i]);
+  }
 }
 
 Eigen::Vector3d TriangleElasticTerm::position(const std::vector<double>& u, PetscInt node) const {

@@ -170,3 +170,28 @@ TEST(MpiEquivalence, LocalTrustRegionReachesTheSameStateOnOneAndTwoRanks) {
   MPI_Barrier(PETSC_COMM_WORLD);
   if (rank == 0) std::filesystem::remove_all(dir);
 }
+
+// RMTR with the vertex-patch smoother (patches truncated at rank boundaries on 2 ranks, so the
+// preconditioner differs there) reaches the same minimiser, and its PC is symmetric positive
+// definite on 2 ranks.
+TEST(MpiEquivalence, PatchSmoothedRmtrReachesTheSameStateOnOneAndTwoRanks) {
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto dir = std::filesystem::temp_directory_path() / "mlshell_mpi_vpatch";
+  Scene scene = parse_scene(std::filesystem::path(MLSHELL_SOURCE_DIR) / "examples/trampoline.yaml");
+  scene.geometry.refine = 2;
+  scene.time.steps = 1;
+  for (const auto& [name, value] : {std::pair{"-tao_rmtr_smoother_qp", "stcg"},
+                                    std::pair{"-tao_rmtr_smoother_pc", "vpatch"}})
+    PetscOptionsSetValue(nullptr, name, value);
+  const SolvedScene parallel = solve_scene(scene, PETSC_COMM_WORLD, dir / "parallel");
+  const SolvedScene serial =
+      solve_scene(scene, PETSC_COMM_SELF, dir / ("serial" + std::to_string(rank)));
+  PetscOptionsClearValue(nullptr, "-tao_rmtr_smoother_qp");
+  PetscOptionsClearValue(nullptr, "-tao_rmtr_smoother_pc");
+  EXPECT_EQ(parallel.status, 0);
+  EXPECT_EQ(serial.status, 0);
+  if (rank == 0) EXPECT_LT(relative_difference(parallel.displacement, serial.displacement), 1e-6);
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (rank == 0) std::filesystem::remove_all(dir);
+}
