@@ -137,14 +137,18 @@ PetscErrorCode LocalTrustRegion::level_norm(Vec v, PetscReal* norm) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode LocalTrustRegion::assemble_derivatives() {
+PetscErrorCode LocalTrustRegion::assemble_derivatives(bool force) {
   PetscFunctionBeginUser;
   PetscCall(VecNorm(g_, NORM_2, &gnorm_));
   finite_ = std::isfinite(fx_) && std::isfinite(gnorm_);
-  if (finite_) {
+  if (!finite_) PetscFunctionReturn(0);
+  if (force || kept_ >= hessian_lag_) {
     PetscCall(f_.hessian(x_, H_));
     ++counters_.hessians;
     PetscCall(qp_->set_operator(H_));
+    kept_ = 0;
+  } else {
+    ++kept_;
   }
   PetscFunctionReturn(0);
 }
@@ -158,7 +162,7 @@ PetscErrorCode LocalTrustRegion::start(Vec x, const PetscReal* f, Vec g) {
   } else {
     PetscCall(f_.objective(x_, &fx_, g_));
   }
-  PetscCall(assemble_derivatives());
+  PetscCall(assemble_derivatives(true));
   PetscFunctionReturn(0);
 }
 
@@ -173,7 +177,7 @@ PetscErrorCode LocalTrustRegion::accepted() {
   PetscFunctionBeginUser;
   ++counters_.accepted;
   PetscCall(f_.accepted(x_));
-  PetscCall(assemble_derivatives());
+  PetscCall(assemble_derivatives(false));
   // The trial value was finite, so the same point evaluated with its gradient must be too.
   PetscCheck(finite_, PetscObjectComm((PetscObject)x_), PETSC_ERR_FP,
              "trust region: the gradient is not finite at an accepted point (f = %g, |g| = %g)",

@@ -32,6 +32,7 @@
 //   -tao_rmtr_stcg_max_it 10         STCG iterations per smoothing step
 //   -tao_rmtr_smoother_pc none       preconditioner of the STCG smoother: none (the paper), or
 //                                    vpatch (vertex-patch Schwarz, vertex_patch_pc.hpp), or any PC
+//   -tao_rmtr_hessian_lag 0          accepted steps a level keeps its Hessian (LocalTrustRegion)
 //   -tao_rmtr_monitor                one line per V-cycle
 //   per-level QP options, PCMG style: -rmtr_levels_<l>_ksp_max_it, -rmtr_levels_<l>_pc_type ...
 //   for levels l ≥ 1 and -rmtr_coarse_pc_factor_mat_solver_type mumps ... for level 0.
@@ -75,6 +76,7 @@ struct RmtrContext {
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0;
   char smoother_pc[64] = "none";
+  PetscInt hessian_lag = 0;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
@@ -160,6 +162,7 @@ PetscErrorCode setup(Tao tao) {
         make_qp(comm, l == 0 ? c->coarse_qp : c->smoother_qp, qp_prefix, c->stcg_max_it,
                 l == 0 ? PCNONE : c->smoother_pc),
         std::move(norm));
+    lv.tr->set_hessian_lag(static_cast<int>(c->hessian_lag));
     PetscCall(VecGetSize(like, &lv.stats.dofs));
   }
   PetscFunctionReturn(0);
@@ -242,7 +245,9 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       PetscCall(lc.model->objective(lc.x0, &h0, lc.scratch));
       PetscCall(VecAXPY(lc.scratch, -1.0, lc.restricted));
       PetscCall(VecNorm(lc.scratch, NORM_2, &error));
-      c.stats.max_consistency_error = std::max<double>(c.stats.max_consistency_error, error / rg);
+      // Relative to the terms that cancel in ∇h(x₀) = ∇f(x₀) + (R∇h^l − ∇f(x₀)): round-off.
+      c.stats.max_consistency_error = std::max<double>(c.stats.max_consistency_error,
+                                                       error / (rg + lc.model->coupling_norm()));
       PetscReal xnorm, misfit;
       PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
       if (xnorm > 0.0) {
@@ -409,6 +414,9 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsString("-tao_rmtr_smoother_pc",
                                "preconditioner of STCG above the coarsest level (none, vpatch, ...)",
                                "", c->smoother_pc, c->smoother_pc, sizeof c->smoother_pc, nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_hessian_lag",
+                            "accepted steps a level keeps its Hessian before assembling it again",
+                            "", c->hessian_lag, &c->hessian_lag, nullptr));
   PetscCall(PetscOptionsEnum("-tao_rmtr_smoother_qp", "QP solver above the coarsest level", "",
                              kQpNames, static_cast<PetscEnum>(c->smoother_qp),
                              reinterpret_cast<PetscEnum*>(&c->smoother_qp), nullptr));
@@ -439,6 +447,8 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   if (c->coarse_max_it < 0) c->coarse_max_it = c->mu1 + c->mu2;
   PetscCheck(c->coarse_max_it >= 1 && c->stcg_max_it >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_coarse_max_it and -tao_rmtr_stcg_max_it must be >= 1");
+  PetscCheck(c->hessian_lag >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_hessian_lag must be >= 0, got %" PetscInt_FMT, c->hessian_lag);
   PetscCheck(c->delta0 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_delta0: must be positive, got %g", (double)c->delta0);
   PetscCheck(c->eps_delta > 0 && c->eps_delta < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,

@@ -23,6 +23,9 @@ class CoarseLevelModel final : public Objective {
   PetscErrorCode hessian(Vec x, Mat H) override { return level_.hessian(x, H); }
   /// The level's error plus that of ⟨δg, x − x₀⟩ at the last point, 8 ε ‖δg‖ ‖x − x₀‖.
   PetscReal evaluation_error() const override;
+  /// ‖δg‖ = ‖R∇h_fine − ∇f(x₀)‖ of the last initialize(): with ‖R∇h_fine‖, the size of the terms
+  /// that cancel in ∇h(x₀), and so the scale of its round-off.
+  PetscReal coupling_norm() const { return delta_g_norm_; }
   /// The linear term is smooth: the level's own step limit and acceptance hooks.
   PetscErrorCode max_step(Vec x, Vec d, PetscReal* alpha) override {
     return level_.max_step(x, d, alpha);

@@ -122,7 +122,8 @@ class LocalTrustRegion {
   /// One iteration of Alg. 4.1 with radius *delta (updated with `p`).
   PetscErrorCode iterate(const TrustRegionParameters& p, PetscReal* delta,
                          TrustRegionIteration* it);
-  /// Moves to x + s and reassembles the value and derivatives there.
+  /// Moves to x + s and reassembles the value and derivatives there (the Hessian as the lag
+  /// allows).
   PetscErrorCode accept(Vec s);
   /// ‖v‖ in the level norm.
   PetscErrorCode level_norm(Vec v, PetscReal* norm) const;
@@ -135,9 +136,15 @@ class LocalTrustRegion {
   bool finite() const { return finite_; }
   const TrustRegionCounters& counters() const { return counters_; }
   void reset_counters() { counters_ = {}; }
+  /// Keeps the Hessian for up to `lag` accepted steps before assembling it again (0, the
+  /// default: after every accepted step; start() always assembles). A lagged Hessian is still a
+  /// bounded model Hessian, which is all the trust-region theory asks for; ρ measures how good it
+  /// is and the radius adapts.
+  void set_hessian_lag(int lag) { hessian_lag_ = lag; }
 
  private:
-  PetscErrorCode assemble_derivatives();
+  /// ‖∇f‖ and finiteness at x_; the Hessian if `force` or it has been kept `hessian_lag_` times.
+  PetscErrorCode assemble_derivatives(bool force);
   /// Counts an accepted step at the new x_, f and ∇f, and assembles the Hessian there.
   PetscErrorCode accepted();
   Objective& f_;
@@ -147,6 +154,7 @@ class LocalTrustRegion {
   Vec x_ = nullptr, g_ = nullptr, s_ = nullptr, trial_ = nullptr, g_trial_ = nullptr;
   PetscReal fx_ = 0.0, gnorm_ = 0.0;
   bool finite_ = false;
+  int hessian_lag_ = 0, kept_ = 0;  // accepted steps the current Hessian has been kept
   TrustRegionCounters counters_;
 };
 

@@ -39,8 +39,9 @@ struct RmtrStatistics {
   /// W of eq. (7.3): Σ_l 2^{−2(L−l)} Q^l, for assemblies and for QP solves.
   double assembly_work_units = 0.0, qp_work_units = 0.0;
   /// Checks of the theory, over all coarse-level corrections: max ‖I s‖_l / Δ^l (eq. 4.7, must
-  /// not exceed 1), and with -tao_rmtr_check_consistency max ‖∇h^{l−1}(x₀) − R∇h^l‖ / ‖R∇h^l‖
-  /// at the start of every coarse solve (eq. 4.5, round-off).
+  /// not exceed 1), and with -tao_rmtr_check_consistency max ‖∇h^{l−1}(x₀) − R∇h^l‖ /
+  /// (‖R∇h^l‖ + ‖R∇h^l − ∇f^{l−1}(x₀)‖) at the start of every coarse solve (eq. 4.5: round-off
+  /// relative to the terms that cancel).
   double max_correction_ratio = 0.0, max_consistency_error = 0.0;
   /// With -tao_rmtr_check_consistency, also the largest relative misfit of the coarse starts,
   /// ‖S x₀^{l−1} − x^l‖ / ‖x^l‖ (eq. 4.6): which projection ran shows here (least squares is the
