@@ -246,8 +246,8 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       PetscCall(VecAXPY(lc.scratch, -1.0, lc.restricted));
       PetscCall(VecNorm(lc.scratch, NORM_2, &error));
       // Relative to the terms that cancel in ∇h(x₀) = ∇f(x₀) + (R∇h^l − ∇f(x₀)): round-off.
-      c.stats.max_consistency_error = std::max<double>(c.stats.max_consistency_error,
-                                                       error / (rg + lc.model->coupling_norm()));
+      c.stats.max_consistency_error =
+          std::max<double>(c.stats.max_consistency_error, error / (rg + lc.model->coupling_norm()));
       PetscReal xnorm, misfit;
       PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
       if (xnorm > 0.0) {
@@ -411,9 +411,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsEnum("-tao_rmtr_projection", "projection of iterates to coarser levels", "",
                              kProjectionNames, static_cast<PetscEnum>(c->projection),
                              reinterpret_cast<PetscEnum*>(&c->projection), nullptr));
-  PetscCall(PetscOptionsString("-tao_rmtr_smoother_pc",
-                               "preconditioner of STCG above the coarsest level (none, vpatch, ...)",
-                               "", c->smoother_pc, c->smoother_pc, sizeof c->smoother_pc, nullptr));
+  PetscCall(
+      PetscOptionsString("-tao_rmtr_smoother_pc",
+                         "preconditioner of STCG above the coarsest level (none, vpatch, ...)", "",
+                         c->smoother_pc, c->smoother_pc, sizeof c->smoother_pc, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_hessian_lag",
                             "accepted steps a level keeps its Hessian before assembling it again",
                             "", c->hessian_lag, &c->hessian_lag, nullptr));

@@ -42,10 +42,10 @@ PetscErrorCode destroy_container(void* ctx) {
 
 struct VertexPatchPc {
   const VertexPatches* patches = nullptr;
-  IS local_is = nullptr;            // the local points' dofs, sorted (block size 3)
-  std::vector<int> position;        // local point → its block position in local_is
-  Mat* sub = nullptr;               // A restricted to local_is
-  VecScatter scatter = nullptr;     // global → local_is order
+  IS local_is = nullptr;         // the local points' dofs, sorted (block size 3)
+  std::vector<int> position;     // local point → its block position in local_is
+  Mat* sub = nullptr;            // A restricted to local_is
+  VecScatter scatter = nullptr;  // global → local_is order
   Vec local_r = nullptr, local_z = nullptr;
   std::vector<std::size_t> offset;  // start of each patch's inverse in `inverse`
   std::vector<double> inverse;      // |A_i|⁻¹, column-major, patch after patch
@@ -115,8 +115,8 @@ PetscErrorCode setup(PC pc) {
     }
     PetscCall(ISCreateBlock(PETSC_COMM_SELF, 3, static_cast<PetscInt>(n), sorted.data(),
                             PETSC_COPY_VALUES, &p->local_is));
-    PetscCall(MatCreateSubMatrices(pc->pmat, 1, &p->local_is, &p->local_is, MAT_INITIAL_MATRIX,
-                                   &p->sub));
+    PetscCall(
+        MatCreateSubMatrices(pc->pmat, 1, &p->local_is, &p->local_is, MAT_INITIAL_MATRIX, &p->sub));
     Vec global;
     PetscCall(MatCreateVecs(pc->pmat, &global, nullptr));
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * static_cast<PetscInt>(n), &p->local_r));
@@ -132,8 +132,8 @@ PetscErrorCode setup(PC pc) {
     }
     p->inverse.assign(p->offset.back(), 0.0);
   } else {
-    PetscCall(MatCreateSubMatrices(pc->pmat, 1, &p->local_is, &p->local_is, MAT_REUSE_MATRIX,
-                                   &p->sub));
+    PetscCall(
+        MatCreateSubMatrices(pc->pmat, 1, &p->local_is, &p->local_is, MAT_REUSE_MATRIX, &p->sub));
   }
   // Factor every patch.
   p->shifted = 0;

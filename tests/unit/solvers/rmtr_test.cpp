@@ -81,33 +81,33 @@ TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
   // Dogleg smoothing (the default), STCG preconditioned by vertex patches, and the same with
   // each level's Hessian kept for two accepted steps.
   for (const char* smoother : {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2"})
-  for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
-    const bool patches = std::string(smoother) != "dogleg";
-    const bool lag = std::string(smoother) == "stcg-vpatch-lag2";
-    ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
-                             {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
-                             {"-tao_rmtr_hessian_lag", lag ? "2" : "0"}});
-    const Scene scene = example(file, 2, 1);
-    Outcome tr;
-    {
-      ScopedOptions o({{"-tao_type", "tr"}});
-      tr = solve(scene, "tr");
+    for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
+      const bool patches = std::string(smoother) != "dogleg";
+      const bool lag = std::string(smoother) == "stcg-vpatch-lag2";
+      ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
+                               {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
+                               {"-tao_rmtr_hessian_lag", lag ? "2" : "0"}});
+      const Scene scene = example(file, 2, 1);
+      Outcome tr;
+      {
+        ScopedOptions o({{"-tao_type", "tr"}});
+        tr = solve(scene, "tr");
+      }
+      ASSERT_EQ(tr.status, 0) << file;
+      for (const char* levels : {"2", "3"}) {
+        ScopedOptions o({{"-tao_rmtr_levels", levels}, {"-tao_rmtr_check_consistency", "1"}});
+        const Outcome rmtr = solve(scene, std::string("rmtr") + levels);
+        ASSERT_EQ(rmtr.status, 0) << file << ", " << levels << " levels";
+        ASSERT_EQ(rmtr.rmtr.levels.size(), static_cast<size_t>(std::stoi(levels)));
+        const std::string what = std::string(smoother) + " " + file + " " + levels;
+        EXPECT_NEAR(rmtr.energy, tr.energy, 1e-10 * std::abs(tr.energy)) << what;
+        EXPECT_LT(max_difference(rmtr.u, tr.u), 1e-6 * max_abs(tr.u)) << what;
+        // Eq. (4.7): prolongated corrections stay in the fine radius; eq. (4.5) holds to round-off
+        // (of ∇f^{l−1}(x₀) − ∇f^{l−1}(x₀), relative to ‖R∇h^l‖ + ‖R∇h^l − ∇f^{l−1}(x₀)‖).
+        EXPECT_LE(rmtr.rmtr.max_correction_ratio, 1.0 + 1e-12) << what;
+        EXPECT_LT(rmtr.rmtr.max_consistency_error, 1e-8) << what;
+      }
     }
-    ASSERT_EQ(tr.status, 0) << file;
-    for (const char* levels : {"2", "3"}) {
-      ScopedOptions o({{"-tao_rmtr_levels", levels}, {"-tao_rmtr_check_consistency", "1"}});
-      const Outcome rmtr = solve(scene, std::string("rmtr") + levels);
-      ASSERT_EQ(rmtr.status, 0) << file << ", " << levels << " levels";
-      ASSERT_EQ(rmtr.rmtr.levels.size(), static_cast<size_t>(std::stoi(levels)));
-      const std::string what = std::string(smoother) + " " + file + " " + levels;
-      EXPECT_NEAR(rmtr.energy, tr.energy, 1e-10 * std::abs(tr.energy)) << what;
-      EXPECT_LT(max_difference(rmtr.u, tr.u), 1e-6 * max_abs(tr.u)) << what;
-      // Eq. (4.7): prolongated corrections stay in the fine radius; eq. (4.5) holds to round-off
-      // (of ∇f^{l−1}(x₀) − ∇f^{l−1}(x₀), relative to ‖R∇h^l‖ + ‖R∇h^l − ∇f^{l−1}(x₀)‖).
-      EXPECT_LE(rmtr.rmtr.max_correction_ratio, 1.0 + 1e-12) << what;
-      EXPECT_LT(rmtr.rmtr.max_consistency_error, 1e-8) << what;
-    }
-  }
 }
 
 TEST(Rmtr, CoarseLevelsDoTheWorkAndTheAccountsAddUp) {
@@ -139,30 +139,30 @@ TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
   // Record f after every V-cycle through TAO's convergence history; Dogleg smoothing and STCG
   // with vertex patches.
   for (const bool patches : {false, true}) {
-  ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
-                           {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"}});
-  const Scene scene = example("trampoline.yaml", 2, 1);
-  SubdivisionHierarchy sub(build_cage(scene.geometry), 2);
-  LevelHierarchy levels(PETSC_COMM_SELF, sub, 0, 3);
-  MultilevelProblem problem(scene, levels, CageFrame::from(scene.geometry));
-  Vec u, v;
-  levels.layout(2).create_vector(&u);
-  VecDuplicate(u, &v);
-  problem.synchronize(scene.time.dt, u, v);
-  StepSolver solver(problem.level(2), &problem);
-  ASSERT_EQ(solver.type(), "rmtr");
-  TaoSetConvergenceHistory(solver.tao(), nullptr, nullptr, nullptr, nullptr, PETSC_DECIDE,
-                           PETSC_TRUE);
-  SolveReport report;
-  ASSERT_EQ(solver.solve(u, report), 0);
-  EXPECT_TRUE(report.converged) << report.reason;
-  PetscReal* f;
-  PetscInt n;
-  TaoGetConvergenceHistory(solver.tao(), &f, nullptr, nullptr, nullptr, &n);
-  ASSERT_GE(n, 2);
-  for (PetscInt i = 1; i < n; ++i) EXPECT_LE(f[i], f[i - 1]) << "V-cycle " << i;
-  VecDestroy(&u);
-  VecDestroy(&v);
+    ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
+                             {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"}});
+    const Scene scene = example("trampoline.yaml", 2, 1);
+    SubdivisionHierarchy sub(build_cage(scene.geometry), 2);
+    LevelHierarchy levels(PETSC_COMM_SELF, sub, 0, 3);
+    MultilevelProblem problem(scene, levels, CageFrame::from(scene.geometry));
+    Vec u, v;
+    levels.layout(2).create_vector(&u);
+    VecDuplicate(u, &v);
+    problem.synchronize(scene.time.dt, u, v);
+    StepSolver solver(problem.level(2), &problem);
+    ASSERT_EQ(solver.type(), "rmtr");
+    TaoSetConvergenceHistory(solver.tao(), nullptr, nullptr, nullptr, nullptr, PETSC_DECIDE,
+                             PETSC_TRUE);
+    SolveReport report;
+    ASSERT_EQ(solver.solve(u, report), 0);
+    EXPECT_TRUE(report.converged) << report.reason;
+    PetscReal* f;
+    PetscInt n;
+    TaoGetConvergenceHistory(solver.tao(), &f, nullptr, nullptr, nullptr, &n);
+    ASSERT_GE(n, 2);
+    for (PetscInt i = 1; i < n; ++i) EXPECT_LE(f[i], f[i - 1]) << "V-cycle " << i;
+    VecDestroy(&u);
+    VecDestroy(&v);
   }
 }
 

@@ -2,6 +2,8 @@
 // point's 3×3 block, ghosts included), M⁻¹ symmetric positive definite also for an indefinite
 // operator, far fewer CG iterations than unpreconditioned CG on the trampoline's Hessian, and a
 // clear error for a matrix without patches.
+#include "mlshell/vertex_patch_pc.hpp"
+
 #include <gtest/gtest.h>
 #include <petscksp.h>
 
@@ -13,7 +15,6 @@
 #include "mlshell/simulation.hpp"
 #include "mlshell/subdivision/level_hierarchy.hpp"
 #include "mlshell/subdivision/subdivision_hierarchy.hpp"
-#include "mlshell/vertex_patch_pc.hpp"
 #include "mlshell/vertex_patches.hpp"
 
 using namespace mlshell;
