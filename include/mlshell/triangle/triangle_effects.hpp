@@ -170,7 +170,9 @@ class ClampHingeTerm final : public EnergyTerm {
 
 /// The rotation part of a clamp with midedge bending: for each clamped triangle, its midedge
 /// element with the clamped edges' normals held by virtual vertices X_j + X_k − X_i + d(t),
-/// minus the elastic term's element of the same triangle with those edges free.
+/// minus the elastic term's element of the same triangle with those edges free. Two clamp
+/// effects on one corner triangle each add their own difference: both edges are held, but the
+/// sum differs from the element with both held by a cross term.
 class MidedgeClampTerm final : public EnergyTerm {
  public:
   /// `edges`: boundary edges (v0 → v1 in their triangle's direction) to clamp.
