@@ -45,12 +45,17 @@ struct TriangleShellParameters {
 };
 
 /// A triangle's midedge element on the mesh: its vertices x0, x1, x2, then the vertex across
-/// each edge i (opposite x_i; −1 on the boundary), and the wing kinds (free on the boundary).
+/// each edge i (opposite x_i; −1 on the boundary), the wing kinds (free on the boundary), their
+/// local nodes on `layout` (−1 across a free edge) and rest positions (a free edge's wing slot
+/// holds its own corner x_i, a finite point the element does not use).
 struct MidedgeStencil {
   std::array<int, 6> vertices;
   std::array<EdgeWing, 3> wings;
+  std::array<PetscInt, 6> nodes;
+  std::array<Eigen::Vector3d, 6> reference;
 };
-MidedgeStencil midedge_stencil(const TriangleDiscretization& disc, int face);
+MidedgeStencil midedge_stencil(const TriangleDiscretization& disc, const ParallelLayout& layout,
+                               int face);
 
 /// Adds one midedge element at positions x: its energy, and its gradient and Hessian on the
 /// slots whose local node is ≥ 0 (−1: a prescribed position, e.g. a clamp's virtual vertex);

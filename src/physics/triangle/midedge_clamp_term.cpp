@@ -25,17 +25,11 @@ MidedgeClampTerm::MidedgeClampTerm(std::string name, const TriangleDiscretizatio
     }
   const double D = plate_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
   for (const auto& [f, held] : clamped) {
-    const MidedgeStencil s = midedge_stencil(disc, f);
+    const MidedgeStencil s = midedge_stencil(disc, layout, f);
     Element e;
-    std::array<Eigen::Vector3d, 6> rest_positions;
+    e.nodes = s.nodes;
+    e.reference = s.reference;
     std::array<EdgeWing, 3> wings = s.wings;
-    for (int i = 0; i < 3; ++i) {
-      const int wing = s.vertices[3 + i];
-      e.nodes[i] = layout.local_of(s.vertices[i]);
-      e.nodes[3 + i] = wing >= 0 ? layout.local_of(wing) : -1;
-      e.reference[i] = X[s.vertices[i]];
-      e.reference[3 + i] = X[wing >= 0 ? wing : s.vertices[i]];
-    }
     e.moves.fill(false);
     for (int i = 0; i < 3; ++i) {
       if (!held[i]) continue;
@@ -45,10 +39,9 @@ MidedgeClampTerm::MidedgeClampTerm(std::string name, const TriangleDiscretizatio
       e.moves[3 + i] = true;
       wings[i] = EdgeWing::kClamp;
     }
-    for (int k = 0; k < 6; ++k) rest_positions[k] = e.reference[k];
     const double nu = params.poisson_ratio;
-    const MidedgeRest with = MidedgeRest::from(rest_positions, wings, D, nu);
-    const MidedgeRest without = MidedgeRest::from(rest_positions, s.wings, D, nu);
+    const MidedgeRest with = MidedgeRest::from(e.reference, wings, D, nu);
+    const MidedgeRest without = MidedgeRest::from(e.reference, s.wings, D, nu);
     e.rest = with;
     e.rest.stiffness = with.stiffness - without.stiffness;
     elements_.push_back(e);

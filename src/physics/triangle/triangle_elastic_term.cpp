@@ -31,18 +31,9 @@ TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
     // One element per owned triangle: its stencil holds the three wing vertices.
     const double D = plate_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
     for (int f : layout.local_elements()) {
-      const MidedgeStencil s = midedge_stencil(disc, f);
-      Plate p;
-      std::array<Eigen::Vector3d, 6> rest_positions;
-      for (int i = 0; i < 3; ++i) {
-        const int wing = s.vertices[3 + i];
-        p.nodes[i] = layout.local_of(s.vertices[i]);
-        p.nodes[3 + i] = wing >= 0 ? layout.local_of(wing) : -1;
-        rest_positions[i] = X[s.vertices[i]];
-        rest_positions[3 + i] = X[wing >= 0 ? wing : s.vertices[i]];
-      }
-      p.rest = MidedgeRest::from(rest_positions, s.wings, D, params.poisson_ratio);
-      plates_.push_back(p);
+      const MidedgeStencil s = midedge_stencil(disc, layout, f);
+      plates_.push_back(
+          {s.nodes, MidedgeRest::from(s.reference, s.wings, D, params.poisson_ratio)});
     }
     return;
   }
