@@ -8,6 +8,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "mlshell/element_matrix_assembly.hpp"
+
 namespace mlshell {
 
 namespace {
@@ -177,6 +179,8 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
   PetscCall(MatNullSpaceDestroy(&rigid));
   PetscCall(VecDestroy(&coordinates));
   PetscCall(attach_vertex_patches(*A, vertex_patches()));
+  // Every element block is in the pattern from the start: add_element_matrix's fast path.
+  PetscCall(prefill_block_pattern(*A, coupled, vertex_patches()->blocks));
   PetscFunctionReturn(0);
 }
 

@@ -1,6 +1,8 @@
 // Shared pieces of all energy terms: log events, local assembly.
 #include "mlshell/energy_term.hpp"
 
+#include "mlshell/element_matrix_assembly.hpp"
+
 #include <map>
 #include <stdexcept>
 
@@ -44,8 +46,7 @@ void add_local_gradient(const std::vector<PetscInt>& nodes, const double* g,
 
 PetscErrorCode add_local_hessian(Mat H, const std::vector<PetscInt>& nodes, const double* values) {
   PetscFunctionBeginUser;
-  const PetscInt n = static_cast<PetscInt>(nodes.size());
-  PetscCall(MatSetValuesBlockedLocal(H, n, nodes.data(), n, nodes.data(), values, ADD_VALUES));
+  PetscCall(add_element_matrix(H, static_cast<PetscInt>(nodes.size()), nodes.data(), values));
   PetscFunctionReturn(0);
 }
 

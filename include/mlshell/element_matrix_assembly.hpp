@@ -1,0 +1,37 @@
+// Adding dense element matrices into the Hessians ParallelLayout::create_matrix makes, straight
+// into their CSR arrays.
+//
+// PETSc's MatSetValuesBlockedLocal maps every block index to a global one, expands it into
+// scalar indices and searches each value's column in its row: for a Catmull–Clark element
+// (16 control points, 2,304 values) that cost more than computing the element (assembly
+// benchmark: 57 % of energy + gradient + Hessian). The pattern of these matrices is fixed when
+// they are made (every element block is prefilled with zeros and assembled once), so a block's
+// position can be found once per block instead of once per value: block columns are local
+// point indices, owned points are the diagonal part's block columns and ghost points a block of
+// the off-diagonal part's compressed columns (`column_of_local`). Rows this rank does not own
+// still go through MatSetValuesBlockedLocal (PETSc's stash sends them at assembly).
+//
+// This plays the part of PETSc's COO assembly (MatSetPreallocationCOO / MatSetValuesCOO)
+// without its per-value index arrays: those would hold two indices per element entry, 1.4×
+// the matrix itself for 16-point elements, where this holds one integer per local point.
+#pragma once
+
+#include <petscmat.h>
+
+#include <vector>
+
+namespace mlshell {
+
+/// Prefills `A` (a block-size-3 MATAIJ matrix, preallocated) with zeros on the given pattern
+/// (for each owned block row, its sorted global block columns), assembles it and attaches what
+/// add_element_matrix needs. `block_of_local` is the PETSc block index of each local point,
+/// owned ones first (num_owned of them, numbered first_owned, first_owned + 1, …).
+PetscErrorCode prefill_block_pattern(Mat A, const std::vector<std::vector<int>>& columns,
+                                     const std::vector<PetscInt>& block_of_local);
+
+/// A += the dense 3n × 3n row-major element matrix on local block indices `nodes`. Uses the
+/// CSR arrays when `A` was prefilled by prefill_block_pattern, else MatSetValuesBlockedLocal.
+/// The caller assembles A afterwards (MAT_FINAL_ASSEMBLY) as with MatSetValues.
+PetscErrorCode add_element_matrix(Mat A, PetscInt n, const PetscInt* nodes, const double* values);
+
+}  // namespace mlshell

@@ -1,0 +1,175 @@
+// Element matrices straight into the CSR arrays (see element_matrix_assembly.hpp).
+#include "mlshell/element_matrix_assembly.hpp"
+
+#include <algorithm>
+
+namespace mlshell {
+
+namespace {
+
+constexpr const char* kColumnsKey = "mlshell_block_columns";
+
+/// What add_element_matrix needs besides the matrix: where each local point's block column is.
+struct BlockColumns {
+  PetscInt num_owned = 0;
+  bool distributed = false;
+  /// ≥ 0: block column of the diagonal part; ≤ −2: block −(c + 2) of the off-diagonal part's
+  /// compressed columns; −1: the point couples with no owned row.
+  std::vector<PetscInt> column_of_local;
+};
+
+PetscErrorCode destroy_columns(void* ctx) {
+  delete static_cast<BlockColumns*>(ctx);
+  return 0;
+}
+
+/// The matrix's diagonal and off-diagonal SeqAIJ parts (the second null on one rank).
+PetscErrorCode parts_of(Mat A, bool distributed, Mat parts[2]) {
+  PetscFunctionBeginUser;
+  if (distributed) {
+    PetscCall(MatMPIAIJGetSeqAIJ(A, &parts[0], &parts[1], nullptr));
+  } else {
+    parts[0] = A;
+    parts[1] = nullptr;
+  }
+  PetscFunctionReturn(0);
+}
+
+/// Checks that every owned block row of a part stores full 3 × 3 blocks: three scalar rows of
+/// one length, columns in aligned triplets. add_element_matrix relies on it.
+PetscErrorCode check_full_blocks(Mat part, PetscInt num_owned) {
+  PetscFunctionBeginUser;
+  const PetscInt *ia, *ja;
+  PetscCall(MatSeqAIJGetCSRAndMemType(part, &ia, &ja, nullptr, nullptr));
+  for (PetscInt r = 0; r < num_owned; ++r) {
+    const PetscInt s = ia[3 * r], len = ia[3 * r + 1] - s;
+    bool ok = len % 3 == 0 && ia[3 * r + 2] - ia[3 * r + 1] == len &&
+              ia[3 * r + 3] - ia[3 * r + 2] == len;
+    for (PetscInt c = 0; ok && c < 3; ++c)
+      for (PetscInt k = 0; ok && k < len; ++k)
+        ok = ja[ia[3 * r + c] + k] == ja[s + k] && ja[s + k] % 3 == k % 3;
+    PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "block row %" PetscInt_FMT " of a Hessian does not store full 3 x 3 blocks", r);
+  }
+  PetscFunctionReturn(0);
+}
+
+/// Position k of the block whose first scalar column is `column` in a row of nb blocks.
+inline PetscInt find_block(const PetscInt* row, PetscInt nb, PetscInt column) {
+  PetscInt lo = 0, hi = nb;
+  while (lo < hi) {
+    const PetscInt mid = (lo + hi) / 2;
+    if (row[3 * mid] < column)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < nb && row[3 * lo] == column ? lo : -1;
+}
+
+}  // namespace
+
+PetscErrorCode prefill_block_pattern(Mat A, const std::vector<std::vector<int>>& columns,
+                                     const std::vector<PetscInt>& block_of_local) {
+  PetscFunctionBeginUser;
+  PetscInt rstart;
+  PetscCall(MatGetOwnershipRange(A, &rstart, nullptr));
+  const PetscInt first = rstart / 3, num_owned = static_cast<PetscInt>(columns.size());
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> zeros;
+  for (PetscInt i = 0; i < num_owned; ++i) {
+    const PetscInt row = first + i;
+    cols.assign(columns[i].begin(), columns[i].end());
+    zeros.assign(9 * cols.size(), 0.0);
+    PetscCall(MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(),
+                                  zeros.data(), INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+
+  PetscBool seq, mpi;
+  PetscCall(PetscObjectTypeCompare((PetscObject)A, MATSEQAIJ, &seq));
+  PetscCall(PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &mpi));
+  if (!seq && !mpi) PetscFunctionReturn(0);  // another type: MatSetValues does the work
+  auto* bc = new BlockColumns;
+  bc->num_owned = num_owned;
+  bc->distributed = mpi;
+  bc->column_of_local.assign(block_of_local.size(), -1);
+  for (PetscInt l = 0; l < num_owned; ++l) bc->column_of_local[l] = l;
+  Mat parts[2];
+  PetscCall(parts_of(A, mpi, parts));
+  for (Mat part : parts)
+    if (part) PetscCall(check_full_blocks(part, num_owned));
+  if (mpi) {
+    const PetscInt* garray;
+    PetscInt nb;
+    PetscCall(MatMPIAIJGetSeqAIJ(A, nullptr, nullptr, &garray));
+    PetscCall(MatGetSize(parts[1], nullptr, &nb));
+    for (size_t l = num_owned; l < block_of_local.size(); ++l) {
+      const PetscInt* it = std::lower_bound(garray, garray + nb, 3 * block_of_local[l]);
+      if (it != garray + nb && *it == 3 * block_of_local[l])
+        bc->column_of_local[l] = -((it - garray) / 3 + 2);
+    }
+  }
+  PetscContainer container;
+  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)A), &container));
+  PetscCall(PetscContainerSetPointer(container, bc));
+  PetscCall(PetscContainerSetUserDestroy(container, destroy_columns));
+  PetscCall(PetscObjectCompose((PetscObject)A, kColumnsKey, (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode add_element_matrix(Mat A, PetscInt n, const PetscInt* nodes, const double* values) {
+  PetscFunctionBeginUser;
+  PetscContainer container = nullptr;
+  PetscCall(PetscObjectQuery((PetscObject)A, kColumnsKey, (PetscObject*)&container));
+  if (!container) {
+    PetscCall(MatSetValuesBlockedLocal(A, n, nodes, n, nodes, values, ADD_VALUES));
+    PetscFunctionReturn(0);
+  }
+  const BlockColumns* bc;
+  PetscCall(PetscContainerGetPointer(container, (void**)&bc));
+  Mat parts[2];
+  PetscCall(parts_of(A, bc->distributed, parts));
+  const PetscInt *ia[2] = {nullptr, nullptr}, *ja[2] = {nullptr, nullptr};
+  PetscScalar* a[2] = {nullptr, nullptr};
+  for (int p = 0; p < 2; ++p)
+    if (parts[p]) {
+      PetscCall(MatSeqAIJGetCSRAndMemType(parts[p], &ia[p], &ja[p], nullptr, nullptr));
+      PetscCall(MatSeqAIJGetArray(parts[p], &a[p]));
+    }
+  const PetscInt width = 3 * n;
+  for (PetscInt i = 0; i < n; ++i) {
+    const PetscInt r = nodes[i];
+    const double* rows = values + 3 * i * width;
+    if (r >= bc->num_owned) {  // another rank's row: through PETSc's stash
+      PetscCall(MatSetValuesBlockedLocal(A, 1, &nodes[i], n, nodes, rows, ADD_VALUES));
+      continue;
+    }
+    for (PetscInt j = 0; j < n; ++j) {
+      const PetscInt col = bc->column_of_local[nodes[j]];
+      const int p = col >= 0 ? 0 : 1;
+      const PetscInt block = col >= 0 ? col : -col - 2;
+      const PetscInt s = ia[p] ? ia[p][3 * r] : 0;
+      const PetscInt k =
+          col == -1 ? -1 : find_block(ja[p] + s, (ia[p][3 * r + 1] - s) / 3, 3 * block);
+      PetscCheck(k >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                 "element block (%" PetscInt_FMT ", %" PetscInt_FMT
+                 ") lies outside the Hessian's pattern",
+                 r, nodes[j]);
+      for (int c = 0; c < 3; ++c) {
+        PetscScalar* dst = a[p] + ia[p][3 * r + c] + 3 * k;
+        const double* src = rows + c * width + 3 * j;
+        dst[0] += src[0];
+        dst[1] += src[1];
+        dst[2] += src[2];
+      }
+    }
+  }
+  for (int p = 0; p < 2; ++p)
+    if (parts[p]) PetscCall(MatSeqAIJRestoreArray(parts[p], &a[p]));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell

@@ -1,0 +1,93 @@
+// Element matrices written straight into the CSR arrays (element_matrix_assembly.hpp) give the
+// matrix MatSetValuesBlockedLocal gives, on one rank and on two (rows of other ranks, ghost
+// columns), and a block outside the pattern is an error, not a silent drop.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "mlshell/element_matrix_assembly.hpp"
+#include "physics_fixtures.hpp"
+
+using namespace mlshell;
+
+namespace {
+
+/// Adds a random unsymmetric element matrix per local element into `direct` (the fast path)
+/// and `reference` (MatSetValuesBlockedLocal); returns how many of them touch rows or columns
+/// of points this rank does not own.
+int add_random_elements(const TestProblem& tp, Mat direct, Mat reference) {
+  int touching_ghosts = 0;
+  for (int f : tp.layout->local_elements()) {
+    const std::vector<int> stencil = tp.disc->stencil(f);
+    const auto nodes = to_local_nodes(*tp.layout, stencil.data(), static_cast<int>(stencil.size()));
+    const PetscInt n = static_cast<PetscInt>(nodes.size());
+    std::mt19937 rng(f);  // the same values for an element on any number of ranks
+    std::uniform_real_distribution<double> dist(-1.0, 1.0);
+    std::vector<double> values(9 * n * n);
+    for (double& v : values) v = dist(rng);
+    PetscCallAbort(PETSC_COMM_SELF, add_element_matrix(direct, n, nodes.data(), values.data()));
+    PetscCallAbort(PETSC_COMM_SELF, MatSetValuesBlockedLocal(reference, n, nodes.data(), n,
+                                                             nodes.data(), values.data(),
+                                                             ADD_VALUES));
+    for (PetscInt v : nodes)
+      if (v >= tp.layout->num_owned_points()) {
+        ++touching_ghosts;
+        break;
+      }
+  }
+  for (Mat A : {direct, reference}) {
+    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  }
+  return touching_ghosts;
+}
+
+/// ‖direct − reference‖_F / ‖reference‖_F, with both made by the layout and summed twice (the
+/// second sum lands on the first: the arrays are added to, not overwritten).
+double relative_matrix_difference(const TestProblem& tp, int* touching_ghosts) {
+  Mat direct, reference;
+  tp.layout->create_matrix(&direct);
+  tp.layout->create_matrix(&reference);
+  for (int pass = 0; pass < 2; ++pass) *touching_ghosts = add_random_elements(tp, direct, reference);
+  PetscReal norm, diff;
+  MatNorm(reference, NORM_FROBENIUS, &norm);
+  MatAXPY(reference, -1.0, direct, SAME_NONZERO_PATTERN);
+  MatNorm(reference, NORM_FROBENIUS, &diff);
+  MatDestroy(&direct);
+  MatDestroy(&reference);
+  return diff / norm;
+}
+
+}  // namespace
+
+TEST(ElementMatrixAssembly, MatchesMatSetValuesOnOneRank) {
+  TestProblem tp("all", PETSC_COMM_SELF);
+  int touching_ghosts;
+  EXPECT_LT(relative_matrix_difference(tp, &touching_ghosts), 1e-14);
+}
+
+TEST(ElementMatrixAssembly, BlockOutsideThePatternIsAnError) {
+  TestProblem tp("elastic_denim", PETSC_COMM_SELF);
+  Mat A;
+  tp.layout->create_matrix(&A);
+  // The first and last points of the 6 × 6-element rectangle share no element.
+  const PetscInt nodes[2] = {0, tp.layout->num_local_points() - 1};
+  const std::vector<double> values(36, 1.0);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  const PetscErrorCode ierr = add_element_matrix(A, 2, nodes, values.data());
+  PetscPopErrorHandler();
+  EXPECT_EQ(ierr, PETSC_ERR_ARG_OUTOFRANGE);
+  MatDestroy(&A);
+}
+
+TEST(MpiElementMatrixAssembly, MatchesMatSetValuesWithRowsOfOtherRanks) {
+  int size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  ASSERT_GE(size, 2) << "run under mpiexec -n 2";
+  TestProblem tp("all", PETSC_COMM_WORLD);
+  int touching_ghosts, total;
+  const double difference = relative_matrix_difference(tp, &touching_ghosts);
+  MPI_Allreduce(&touching_ghosts, &total, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_GT(total, 0) << "no element touches another rank's points: the test checks nothing";
+  EXPECT_LT(difference, 1e-14);
+}
