@@ -90,9 +90,10 @@ PhiValue ResponseFunction::extend(const Continuation& c, double t) {
 }
 
 PhiValue ResponseFunction::fitted(double u) const {
-  // (u+1)^α − 1 = expm1(α log1p(u)): the exponents reach −12 802.
+  // (u+1)^α − 1 = expm1(α log1p(u)): the exponents reach −12 802. One log1p per argument and
+  // one expm1 per term: (u+1)^(α−1) = (1 + expm1(α l))/(1 + u).
   PhiValue v;
-  const double l = std::log1p(u);
+  const double l = std::log1p(u), inverse = 1.0 / (1.0 + u);
   for (size_t i = 0; i < mu_.size(); ++i) {
     const double a = alpha_[i];
     if (a == 1.0) {  // linear term: exact for any u
@@ -100,10 +101,11 @@ PhiValue ResponseFunction::fitted(double u) const {
       v.df += mu_[i];
       continue;
     }
-    v.f += mu_[i] / a * std::expm1(a * l);
-    const double p1 = std::exp((a - 1.0) * l);
+    const double power_m1 = std::expm1(a * l);
+    v.f += mu_[i] / a * power_m1;
+    const double p1 = (1.0 + power_m1) * inverse;
     v.df += mu_[i] * p1;
-    v.ddf += mu_[i] * (a - 1.0) * p1 / (1.0 + u);
+    v.ddf += mu_[i] * (a - 1.0) * p1 * inverse;
   }
   return v;
 }

@@ -56,6 +56,59 @@ void ShellElasticTerm::inspect(const std::vector<double>& u, MaterialReport& rep
     }
 }
 
+namespace {
+
+// The element Hessian Σ_g qw_g B_gᵀ H_g B_g, where B_g = W_g ⊗ I₃ maps the element's 3n dofs to
+// the 15 surface quantities (W_g: the 5 × n weights of δ_1, δ_2, δ_11, δ_12, δ_22 at point g),
+// as one dense product: with 𝕎 the 5ng × n stack of the W_g and, for each pair of components
+// (c, d), T_cd the 5ng × n stack of Σ_q qw_g H_g(3p + c, 3q + d) W_g(q, ·), its (c, d)
+// components are He_cd = 𝕎ᵀ T_cd. He is symmetric, so only the six pairs c ≤ d are formed.
+class ElementHessian {
+ public:
+  static constexpr int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+
+  void start(const ElementBasis& b, int ng) {
+    n_ = b.size;
+    W_.resize(5 * ng, n_);
+    for (int g = 0; g < ng; ++g)
+      for (int p = 0; p < 5; ++p)
+        W_.row(5 * g + p) = Eigen::Map<const Eigen::RowVectorXd>(b.slot(g, kDu + p), n_);
+    T_.resize(5 * ng, 6 * n_);
+  }
+
+  void add_point(int g, const Matrix15& H, double qw) {
+    const auto Wg = W_.middleRows(5 * g, 5);
+    for (int k = 0; k < 6; ++k) {
+      const int c = kPairs[k][0], d = kPairs[k][1];
+      Eigen::Matrix<double, 5, 5> Hcd;
+      for (int p = 0; p < 5; ++p)
+        for (int q = 0; q < 5; ++q) Hcd(p, q) = qw * H(3 * p + c, 3 * q + d);
+      T_.block(5 * g, k * n_, 5, n_).noalias() = Hcd * Wg;
+    }
+  }
+
+  /// The 3n × 3n row-major element Hessian into He.
+  void finish(std::vector<double>& He) {
+    P_.noalias() = W_.transpose() * T_;
+    const int w = 3 * n_;
+    for (int k = 0; k < 6; ++k) {
+      const int c = kPairs[k][0], d = kPairs[k][1];
+      for (int j = 0; j < n_; ++j)
+        for (int i = 0; i < n_; ++i) {
+          const double v = P_(i, k * n_ + j);
+          He[(3 * i + c) * w + 3 * j + d] = v;
+          He[(3 * j + d) * w + 3 * i + c] = v;
+        }
+    }
+  }
+
+ private:
+  int n_ = 0;
+  Eigen::MatrixXd W_, T_, P_;
+};
+
+}  // namespace
+
 PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSum& energy,
                                      std::vector<double>* grad, Mat hess) const {
   PetscFunctionBeginUser;
@@ -63,11 +116,14 @@ PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSu
   std::vector<double> ge, He;
   Vector15 g15;
   Matrix15 H15;
-  Eigen::Matrix<double, 3, 15> A;
+  ElementHessian element_hessian;
   for (const Element& e : elements_) {
     const int n = e.basis.size;
     if (grad) ge.assign(3 * n, 0.0);
-    if (hess) He.assign(9 * n * n, 0.0);
+    if (hess) {
+      He.resize(9 * n * n);
+      element_hessian.start(e.basis, ng);
+    }
     for (int g = 0; g < ng; ++g) {
       double delta[15];
       surface_quantities(e, g, u, delta);
@@ -81,31 +137,11 @@ PetscErrorCode ShellElasticTerm::add(const std::vector<double>& u, CompensatedSu
           for (int i = 0; i < n; ++i)
             for (int c = 0; c < 3; ++c) ge[3 * i + c] += qw * w[i] * g15[3 * p + c];
         }
-      if (hess) {
-        // He(i,j) = Σ_pq B_p,i B_q,j H15(p,q): first A_i = Σ_p B_p,i H15(p, :).
-        for (int i = 0; i < n; ++i) {
-          A.setZero();
-          for (int p = 0; p < 5; ++p) A += e.basis.slot(g, kDu + p)[i] * H15.middleRows<3>(3 * p);
-          A *= qw;
-          for (int j = i; j < n; ++j) {  // upper blocks; the lower ones by symmetry below
-            Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
-            for (int q = 0; q < 5; ++q)
-              block += e.basis.slot(g, kDu + q)[j] * A.middleCols<3>(3 * q);
-            for (int c = 0; c < 3; ++c)
-              for (int d = 0; d < 3; ++d) He[(3 * i + c) * 3 * n + 3 * j + d] += block(c, d);
-          }
-        }
-      }
-    }
-    if (hess) {
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < i; ++j)
-          for (int c = 0; c < 3; ++c)
-            for (int d = 0; d < 3; ++d)
-              He[(3 * i + c) * 3 * n + 3 * j + d] = He[(3 * j + d) * 3 * n + 3 * i + c];
+      if (hess) element_hessian.add_point(g, H15, qw);
     }
     if (grad) add_local_gradient(e.nodes, ge.data(), *grad);
     if (hess) {
+      element_hessian.finish(He);
       if (projects_hessian()) project_to_psd(Eigen::Map<Eigen::MatrixXd>(He.data(), 3 * n, 3 * n));
       PetscCall(add_local_hessian(hess, e.nodes, He.data()));
     }
