@@ -1,7 +1,52 @@
 // What every kind of discretization shares (see discretization.hpp).
 #include "mlshell/discretization.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace mlshell {
+
+SurfaceSampling::SurfaceSampling(std::vector<double> reference, std::vector<std::int64_t> offsets,
+                                 std::vector<int> nodes, std::vector<double> weights,
+                                 std::vector<std::int64_t> cells, int cell_size)
+    : reference_(std::move(reference)),
+      offsets_(std::move(offsets)),
+      nodes_(std::move(nodes)),
+      weights_(std::move(weights)),
+      cells_(std::move(cells)),
+      cell_size_(cell_size) {
+  const auto n = static_cast<std::int64_t>(offsets_.size()) - 1;
+  if (n < 0 || offsets_.front() != 0 || offsets_.back() != static_cast<std::int64_t>(nodes_.size()) ||
+      nodes_.size() != weights_.size() || reference_.size() != static_cast<size_t>(3 * n) ||
+      cell_size_ < 3 || cells_.size() % cell_size_ != 0)
+    throw std::invalid_argument("SurfaceSampling: inconsistent sizes (" + std::to_string(n) +
+                                " samples, " + std::to_string(reference_.size()) +
+                                " coordinates, " + std::to_string(nodes_.size()) + " nodes, " +
+                                std::to_string(weights_.size()) + " weights)");
+  for (std::int64_t c : cells_)
+    if (c < 0 || c >= n)
+      throw std::invalid_argument("SurfaceSampling: cell index " + std::to_string(c) +
+                                  " outside [0, " + std::to_string(n) + ")");
+}
+
+SurfaceSample SurfaceSampling::sample(const std::vector<double>& u) const {
+  SurfaceSample s;
+  s.cell_size = cell_size_;
+  s.cells = cells_;
+  s.points = reference_;
+  s.displacement.assign(reference_.size(), 0.0);
+  for (std::int64_t p = 0; p < num_points(); ++p) {
+    double d[3] = {0.0, 0.0, 0.0};
+    if (!u.empty())
+      for (std::int64_t k = offsets_[p]; k < offsets_[p + 1]; ++k)
+        for (int c = 0; c < 3; ++c) d[c] += weights_[k] * u[3 * nodes_[k] + c];
+    for (int c = 0; c < 3; ++c) {
+      s.points[3 * p + c] += d[c];
+      s.displacement[3 * p + c] = d[c];
+    }
+  }
+  return s;
+}
 
 std::uint64_t discretization_fingerprint(const Discretization& disc) {
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a

@@ -31,13 +31,37 @@ struct SurfaceSample {
   std::int64_t num_cells() const { return static_cast<std::int64_t>(cells.size()) / cell_size; }
 };
 
-/// Evaluates the deformed surface of one discretization at fixed sample points.
+/// The deformed surface of one discretization at fixed sample points, each a fixed linear
+/// combination of the control points: sample s lies at X_s + Σ_k w_k u_{n_k}, k over
+/// [offsets[s], offsets[s + 1]) of `nodes` (natural point indices) and `weights`. Being linear,
+/// it is also a matrix, which the parallel frame writer applies to distributed displacements
+/// (DistributedSampling).
 class SurfaceSampling {
  public:
-  virtual ~SurfaceSampling() = default;
+  /// reference: 3 coordinates per sample; offsets: one more than samples, from 0; cells:
+  /// cell_size sample indices each. Throws std::invalid_argument on inconsistent sizes.
+  SurfaceSampling(std::vector<double> reference, std::vector<std::int64_t> offsets,
+                  std::vector<int> nodes, std::vector<double> weights,
+                  std::vector<std::int64_t> cells, int cell_size);
   /// The deformed surface for natural-order displacements `u` (3 per point; empty: the
   /// reference surface).
-  virtual SurfaceSample sample(const std::vector<double>& u) const = 0;
+  SurfaceSample sample(const std::vector<double>& u) const;
+  std::int64_t num_points() const { return static_cast<std::int64_t>(offsets_.size()) - 1; }
+  std::int64_t num_cells() const { return static_cast<std::int64_t>(cells_.size()) / cell_size_; }
+  int cell_size() const { return cell_size_; }
+  const std::vector<double>& reference() const { return reference_; }
+  const std::vector<std::int64_t>& offsets() const { return offsets_; }
+  const std::vector<int>& nodes() const { return nodes_; }
+  const std::vector<double>& weights() const { return weights_; }
+  const std::vector<std::int64_t>& cells() const { return cells_; }
+
+ private:
+  std::vector<double> reference_;
+  std::vector<std::int64_t> offsets_;
+  std::vector<int> nodes_;
+  std::vector<double> weights_;
+  std::vector<std::int64_t> cells_;
+  int cell_size_;
 };
 
 class Discretization {

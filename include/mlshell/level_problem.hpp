@@ -73,8 +73,8 @@ class LevelProblem final : public Objective {
   /// Energy of each term, the total f(u) and ‖∇f(u)‖₂ at u (for reports).
   PetscErrorCode report(Vec u, std::vector<double>& energies, PetscReal* total, PetscReal* gnorm);
 
-  /// Every term's per-element output fields at u, in natural face order, on rank 0 (empty on
-  /// the other ranks; faces that are not elements hold 0).
+  /// Every term's per-element output fields at u, in natural face order, on rank 0 (on the
+  /// other ranks the same names with no values; faces that are not elements hold 0).
   PetscErrorCode face_fields(Vec u, int num_faces,
                              std::vector<std::pair<std::string, std::vector<double>>>& fields);
 

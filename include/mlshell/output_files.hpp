@@ -1,5 +1,6 @@
-// Result files: every writer here runs on one process (rank 0 of the simulation) with data that
-// has already been gathered in natural (rank-independent) order, and writes atomically: the
+// Result files: every writer here but XdmfSeries runs on one process (rank 0 of the simulation)
+// with data that has already been gathered in natural (rank-independent) order; XdmfSeries
+// writes distributed data in parallel. All write atomically: the
 // content goes to `<name>.tmp.<pid>` in the same folder and is renamed over `<name>` only when it
 // is complete, so a reader never sees a partly written file passed off as complete.
 // Errors (cannot create folder, disk full, ...) throw OutputError naming the file and the cause.
@@ -13,6 +14,9 @@
 #include <string>
 #include <variant>
 #include <vector>
+
+#include <petscis.h>
+#include <petscvec.h>
 
 #include "mlshell/discretization.hpp"
 
@@ -37,21 +41,40 @@ void write_material_table(const MaterialSpec& spec, const std::filesystem::path&
 void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
                const std::string& comment);
 
+/// One frame's datasets as PETSc objects on a series' communicator, each rank holding a
+/// contiguous slice in natural order: geometry (and displacement) of block size 3, topology of
+/// block size cell_size, and scalar cell fields (block size 1, named "cell_<name>").
+struct FrameData {
+  Vec geometry = nullptr;
+  Vec displacement = nullptr;  ///< optional
+  IS topology = nullptr;
+  int cell_size = 4;
+  std::vector<std::pair<std::string, Vec>> cell_fields;
+};
+
 /// A time series for ParaView: one HDF5 file per frame (`<stem>_<step 6 digits>.h5` holding
 /// `/geometry` (N×3 float64), `/topology` (M×4 PetscInt, i.e. int32 or int64 as PETSc was built;
 /// the XDMF states which) and, when present, `/displacement` (N×3 float64)) plus `<stem>.xdmf`,
 /// an XDMF 3 temporal collection that is rewritten atomically after each frame, so it is valid
 /// at any moment and lists only complete frames. Adding a step already listed replaces it.
+/// Collective on `comm`: each rank writes its slice of the datasets (parallel HDF5); rank 0
+/// names, renames and lists the files.
 class XdmfSeries {
  public:
-  XdmfSeries(std::filesystem::path dir, std::string stem);
+  XdmfSeries(std::filesystem::path dir, std::string stem, MPI_Comm comm = PETSC_COMM_SELF);
   ~XdmfSeries();
   XdmfSeries(const XdmfSeries&) = delete;
   XdmfSeries& operator=(const XdmfSeries&) = delete;
+  /// One process's surface (a series on one rank).
   void add_frame(int step, double time, const SurfaceSample& surface);
+  /// Distributed datasets (collective).
+  void add_frame(int step, double time, const FrameData& frame);
   const std::filesystem::path& xdmf_path() const { return xdmf_; }
 
  private:
+  std::string h5_name(int step) const;
+  void write_xdmf() const;
+  MPI_Comm comm_;
   std::filesystem::path dir_, xdmf_;
   std::string stem_;
   struct Frame {

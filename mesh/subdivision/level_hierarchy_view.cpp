@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "mlshell/subdivision/level_hierarchy.hpp"
+#include "mlshell/output_files.hpp"
 #include "mlshell/subdivision/surface_sampler.hpp"
 
 namespace mlshell {
@@ -71,7 +72,7 @@ void write_hierarchy(const LevelHierarchy& levels, const std::string& dir) {
     const std::filesystem::path base = std::filesystem::path(dir) / ("level_" + std::to_string(l));
     write_obj(base.string() + "_cage.obj", cage,
               "mlshell level " + std::to_string(l) + " control cage");
-    write_obj(base.string() + "_surface.obj", SurfaceSampler(d, 4).sample({}),
+    write_obj(base.string() + "_surface.obj", sample_limit_surface(d, 4)->sample({}),
               "mlshell level " + std::to_string(l) + " limit surface");
   }
 }

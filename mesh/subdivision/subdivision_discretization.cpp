@@ -153,7 +153,7 @@ std::vector<std::vector<int>> SubdivisionDiscretization::boundary_loops() const 
 }
 
 std::unique_ptr<SurfaceSampling> SubdivisionDiscretization::sampling(int samples) const {
-  return std::make_unique<SurfaceSampler>(*this, samples);
+  return sample_limit_surface(*this, samples);
 }
 
 SurfacePoint SubdivisionDiscretization::edge_point(const BoundaryEdge& e, double s) const {

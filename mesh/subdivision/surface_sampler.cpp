@@ -3,8 +3,10 @@
 
 namespace mlshell {
 
-SurfaceSampler::SurfaceSampler(const SubdivisionDiscretization& disc, int k) : disc_(disc) {
+std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretization& disc,
+                                                      int k) {
   std::vector<SurfacePoint> pts;
+  std::vector<std::int64_t> cells;
   for (int f : disc.elements()) {
     const std::int64_t base = static_cast<std::int64_t>(pts.size());
     for (int j = 0; j <= k; ++j)
@@ -12,28 +14,24 @@ SurfaceSampler::SurfaceSampler(const SubdivisionDiscretization& disc, int k) : d
     for (int j = 0; j < k; ++j)
       for (int i = 0; i < k; ++i) {
         const std::int64_t a = base + j * (k + 1) + i;
-        cells_.insert(cells_.end(), {a, a + 1, a + k + 2, a + k + 1});
+        cells.insert(cells.end(), {a, a + 1, a + k + 2, a + k + 1});
       }
   }
-  basis_ = disc.evaluator().evaluate(pts);
-}
-
-SurfaceSample SurfaceSampler::sample(const std::vector<double>& u) const {
-  SurfaceSample s;
-  const auto& X = disc_.mesh().points;
-  for (const PointBasis& b : basis_) {
+  std::vector<double> reference;
+  std::vector<std::int64_t> offsets{0};
+  std::vector<int> nodes;
+  std::vector<double> weights;
+  const auto& X = disc.mesh().points;
+  for (const PointBasis& b : disc.evaluator().evaluate(pts)) {
     const Point3 x = b.apply(kValue, X);
-    Point3 d = Point3::Zero();
-    if (!u.empty())
-      for (int i = 0; i < b.size(); ++i)
-        for (int c = 0; c < 3; ++c) d[c] += b.w[kValue][i] * u[3 * b.nodes[i] + c];
-    for (int c = 0; c < 3; ++c) {
-      s.points.push_back(x[c] + d[c]);
-      s.displacement.push_back(d[c]);
-    }
+    reference.insert(reference.end(), {x[0], x[1], x[2]});
+    nodes.insert(nodes.end(), b.nodes.begin(), b.nodes.end());
+    weights.insert(weights.end(), b.w[kValue].begin(), b.w[kValue].end());
+    offsets.push_back(static_cast<std::int64_t>(nodes.size()));
   }
-  s.cells = cells_;
-  return s;
+  return std::make_unique<SurfaceSampling>(std::move(reference), std::move(offsets),
+                                           std::move(nodes), std::move(weights), std::move(cells),
+                                           4);
 }
 
 }  // namespace mlshell

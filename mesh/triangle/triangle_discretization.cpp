@@ -6,35 +6,6 @@
 
 namespace mlshell {
 
-namespace {
-
-/// The mesh with its displacements: one output point per vertex, one cell per triangle.
-class TriangleSampling final : public SurfaceSampling {
- public:
-  explicit TriangleSampling(const TriangleMesh& mesh) : mesh_(mesh) {
-    for (const Triangle& t : mesh.triangles) cells_.insert(cells_.end(), t.begin(), t.end());
-  }
-  SurfaceSample sample(const std::vector<double>& u) const override {
-    SurfaceSample s;
-    s.cell_size = 3;
-    s.cells = cells_;
-    s.points.reserve(3 * mesh_.points.size());
-    s.displacement.assign(3 * mesh_.points.size(), 0.0);
-    for (size_t i = 0; i < mesh_.points.size(); ++i)
-      for (int c = 0; c < 3; ++c) {
-        const double d = u.empty() ? 0.0 : u[3 * i + c];
-        s.points.push_back(mesh_.points[i][c] + d);
-        s.displacement[3 * i + c] = d;
-      }
-    return s;
-  }
-
- private:
-  const TriangleMesh& mesh_;
-  std::vector<std::int64_t> cells_;
-};
-
-}  // namespace
 
 TriangleDiscretization::TriangleDiscretization(TriangleMesh mesh)
     : mesh_(std::move(mesh)), topology_(std::make_unique<TriangleTopology>(mesh_)) {
@@ -62,8 +33,21 @@ std::vector<int> TriangleDiscretization::neighbours(int face) const {
   return out;
 }
 
+// The mesh with its displacements: one output point per vertex, one cell per triangle.
 std::unique_ptr<SurfaceSampling> TriangleDiscretization::sampling(int) const {
-  return std::make_unique<TriangleSampling>(mesh_);
+  const auto n = static_cast<std::int64_t>(mesh_.points.size());
+  std::vector<double> reference;
+  std::vector<std::int64_t> offsets(n + 1), cells;
+  std::vector<int> nodes(n);
+  for (std::int64_t i = 0; i < n; ++i) {
+    reference.insert(reference.end(), mesh_.points[i].data(), mesh_.points[i].data() + 3);
+    offsets[i + 1] = i + 1;
+    nodes[i] = static_cast<int>(i);
+  }
+  for (const Triangle& t : mesh_.triangles) cells.insert(cells.end(), t.begin(), t.end());
+  return std::make_unique<SurfaceSampling>(std::move(reference), std::move(offsets),
+                                           std::move(nodes), std::vector<double>(n, 1.0),
+                                           std::move(cells), 3);
 }
 
 }  // namespace mlshell

@@ -1,4 +1,6 @@
-// XDMF 3 time series backed by one HDF5 file per frame, written through PETSc's HDF5 viewer.
+// XDMF 3 time series backed by one HDF5 file per frame, written through PETSc's HDF5 viewer on
+// the series' communicator: every rank writes its slice of each dataset (parallel HDF5), rank 0
+// alone handles the file names (temporary, rename) and the XDMF text.
 //
 // The HDF5 viewer is created with the generic PetscViewerCreate/SetType/FileSetMode/
 // FileSetName sequence, which is exactly what PetscViewerHDF5Open does, because including
@@ -39,20 +41,16 @@ void check_petsc(PetscErrorCode ierr, const std::filesystem::path& file, const c
                     std::to_string(static_cast<int>(ierr)) + ")");
 }
 
-// Owns the PETSc objects of one frame so they are released on every exit path; destroying the
-// viewer is what closes the HDF5 file, so the writer destroys it explicitly (and checks it)
-// before renaming.
-struct FrameObjects {
-  PetscViewer viewer = nullptr;
+// Owns the PETSc objects a SurfaceSample is wrapped in, so they are released on every path.
+struct SampleObjects {
   Vec geometry = nullptr, displacement = nullptr;
   std::vector<Vec> fields;
   IS topology = nullptr;
-  ~FrameObjects() {
+  ~SampleObjects() {
     for (Vec& v : fields) VecDestroy(&v);
     if (geometry) VecDestroy(&geometry);
     if (displacement) VecDestroy(&displacement);
     if (topology) ISDestroy(&topology);
-    if (viewer) PetscViewerDestroy(&viewer);
   }
 };
 
@@ -63,54 +61,76 @@ PetscInt to_petsc_size(std::size_t n, const std::filesystem::path& file) {
   return static_cast<PetscInt>(n);
 }
 
-void write_vector(PetscViewer viewer, Vec& v, const std::vector<double>& data, const char* name,
+/// A sequential Vec borrowing `data` (no copy); block size 3 makes the dataset N×3.
+Vec borrow_vector(const std::vector<double>& data, const char* name,
                   const std::filesystem::path& file, PetscInt block = 3) {
-  // The Vec borrows the caller's array (no copy); block size 3 makes the dataset N×3.
+  Vec v;
   check_petsc(VecCreateSeqWithArray(PETSC_COMM_SELF, block, to_petsc_size(data.size(), file),
                                     data.data(), &v),
               file, "VecCreateSeqWithArray");
   check_petsc(PetscObjectSetName(reinterpret_cast<PetscObject>(v), name), file,
               "PetscObjectSetName");
-  check_petsc(VecView(v, viewer), file, "VecView");
+  return v;
 }
 
-void write_frame_h5(const std::filesystem::path& file, const SurfaceSample& s) {
-  io_detail::create_parent_folder(file);
-  const std::filesystem::path tmp = io_detail::temporary_path_for(file);
+/// Runs `f` on rank 0 and throws the same OutputError on every rank if it threw there, so
+/// that no rank goes on to a collective call the others have left.
+template <class F>
+void on_rank_zero(MPI_Comm comm, F&& f) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  if (rank == 0) try {
+      f();
+    } catch (const std::exception& e) {
+      error = e.what();
+      if (error.empty()) error = "unknown error";
+    }
+  int length = static_cast<int>(error.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  error.resize(length);
+  MPI_Bcast(error.data(), length, MPI_CHAR, 0, comm);
+  if (length) throw OutputError(error);
+}
+
+std::string broadcast(MPI_Comm comm, std::string text) {
+  int length = static_cast<int>(text.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  text.resize(length);
+  MPI_Bcast(text.data(), length, MPI_CHAR, 0, comm);
+  return text;
+}
+
+void write_frame_h5(MPI_Comm comm, const std::filesystem::path& file, const FrameData& frame) {
+  std::filesystem::path tmp;
+  on_rank_zero(comm, [&] {
+    io_detail::create_parent_folder(file);
+    tmp = io_detail::temporary_path_for(file);
+  });
+  // Every rank opens rank 0's temporary name.
+  tmp = broadcast(comm, tmp.string());
+  PetscViewer viewer = nullptr;
   try {
-    FrameObjects o;
-    check_petsc(PetscViewerCreate(PETSC_COMM_SELF, &o.viewer), file, "PetscViewerCreate");
-    check_petsc(PetscViewerSetType(o.viewer, PETSCVIEWERHDF5), file, "PetscViewerSetType");
-    check_petsc(PetscViewerFileSetMode(o.viewer, FILE_MODE_WRITE), file, "PetscViewerFileSetMode");
-    check_petsc(PetscViewerFileSetName(o.viewer, tmp.c_str()), file, "PetscViewerFileSetName");
-
-    write_vector(o.viewer, o.geometry, s.points, "geometry", file);
-
-    // Indices are PetscInt in the file (an IS cannot hold anything else); check_surface has
-    // bounded them by the point count, which to_petsc_size has bounded by PetscInt's range.
-    std::vector<PetscInt> idx(s.cells.begin(), s.cells.end());
-    check_petsc(ISCreateGeneral(PETSC_COMM_SELF, to_petsc_size(idx.size(), file), idx.data(),
-                                PETSC_USE_POINTER, &o.topology),
-                file, "ISCreateGeneral");
-    check_petsc(ISSetBlockSize(o.topology, s.cell_size), file, "ISSetBlockSize");
-    check_petsc(PetscObjectSetName(reinterpret_cast<PetscObject>(o.topology), "topology"), file,
-                "PetscObjectSetName");
-    check_petsc(ISView(o.topology, o.viewer), file, "ISView");
-
-    if (!s.displacement.empty())
-      write_vector(o.viewer, o.displacement, s.displacement, "displacement", file);
-    o.fields.resize(s.cell_data.size(), nullptr);
-    for (std::size_t k = 0; k < s.cell_data.size(); ++k)
-      write_vector(o.viewer, o.fields[k], s.cell_data[k].second,
-                   ("cell_" + s.cell_data[k].first).c_str(), file, 1);
-
-    check_petsc(PetscViewerDestroy(&o.viewer), file, "PetscViewerDestroy (closing the file)");
+    check_petsc(PetscViewerCreate(comm, &viewer), file, "PetscViewerCreate");
+    check_petsc(PetscViewerSetType(viewer, PETSCVIEWERHDF5), file, "PetscViewerSetType");
+    check_petsc(PetscViewerFileSetMode(viewer, FILE_MODE_WRITE), file, "PetscViewerFileSetMode");
+    check_petsc(PetscViewerFileSetName(viewer, tmp.c_str()), file, "PetscViewerFileSetName");
+    check_petsc(VecView(frame.geometry, viewer), file, "VecView (geometry)");
+    // Indices are PetscInt in the file (an IS cannot hold anything else).
+    check_petsc(ISView(frame.topology, viewer), file, "ISView (topology)");
+    if (frame.displacement)
+      check_petsc(VecView(frame.displacement, viewer), file, "VecView (displacement)");
+    for (const auto& field : frame.cell_fields)
+      check_petsc(VecView(field.second, viewer), file, "VecView (cell field)");
+    // Destroying the viewer closes the file (collectively).
+    check_petsc(PetscViewerDestroy(&viewer), file, "PetscViewerDestroy (closing the file)");
   } catch (...) {
+    if (viewer) PetscViewerDestroy(&viewer);
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
     throw;
   }
-  io_detail::commit_temporary(tmp, file);
+  on_rank_zero(comm, [&] { io_detail::commit_temporary(tmp, file); });
 }
 
 // Escapes the characters with a meaning in XML text and attribute values.
@@ -150,8 +170,8 @@ std::string data_item(std::int64_t rows, int cols, const char* number_type, std:
 
 }  // namespace
 
-XdmfSeries::XdmfSeries(std::filesystem::path dir, std::string stem)
-    : dir_(std::move(dir)), stem_(std::move(stem)) {
+XdmfSeries::XdmfSeries(std::filesystem::path dir, std::string stem, MPI_Comm comm)
+    : comm_(comm), dir_(std::move(dir)), stem_(std::move(stem)) {
   if (stem_.empty() || stem_.find('/') != std::string::npos)
     throw std::invalid_argument("XdmfSeries: the stem must be a non-empty file name, got '" +
                                 stem_ + "'");
@@ -161,27 +181,57 @@ XdmfSeries::XdmfSeries(std::filesystem::path dir, std::string stem)
 XdmfSeries::~XdmfSeries() = default;
 
 void XdmfSeries::add_frame(int step, double time, const SurfaceSample& surface) {
+  int size;
+  MPI_Comm_size(comm_, &size);
+  if (size != 1)
+    throw std::logic_error("XdmfSeries::add_frame: a SurfaceSample is one process's data; a "
+                           "series on several ranks takes a FrameData");
   io_detail::check_surface(surface, "XdmfSeries::add_frame");
-  if (step < 0) throw std::invalid_argument("XdmfSeries::add_frame: negative step");
   // HDF5 datasets of zero extent are not worth supporting: a frame without points is a bug.
   if (surface.points.empty() || surface.cells.empty())
     throw std::invalid_argument("XdmfSeries::add_frame: the surface has no points or no cells");
+  const std::filesystem::path file = dir_ / h5_name(step);
+  SampleObjects o;
+  o.geometry = borrow_vector(surface.points, "geometry", file);
+  // check_surface has bounded the indices by the point count, which to_petsc_size has bounded
+  // by PetscInt's range.
+  const std::vector<PetscInt> idx(surface.cells.begin(), surface.cells.end());
+  check_petsc(ISCreateGeneral(PETSC_COMM_SELF, to_petsc_size(idx.size(), file), idx.data(),
+                              PETSC_USE_POINTER, &o.topology),
+              file, "ISCreateGeneral");
+  check_petsc(ISSetBlockSize(o.topology, surface.cell_size), file, "ISSetBlockSize");
+  check_petsc(PetscObjectSetName(reinterpret_cast<PetscObject>(o.topology), "topology"), file,
+              "PetscObjectSetName");
+  FrameData frame{o.geometry, nullptr, o.topology, surface.cell_size, {}};
+  if (!surface.displacement.empty())
+    frame.displacement = o.displacement = borrow_vector(surface.displacement, "displacement", file);
+  for (const auto& [name, values] : surface.cell_data) {
+    o.fields.push_back(borrow_vector(values, ("cell_" + name).c_str(), file, 1));
+    frame.cell_fields.emplace_back(name, o.fields.back());
+  }
+  add_frame(step, time, frame);
+}
 
+std::string XdmfSeries::h5_name(int step) const {
+  if (step < 0) throw std::invalid_argument("XdmfSeries::add_frame: negative step");
   char name[32];
   std::snprintf(name, sizeof name, "_%06d.h5", step);
-  const std::string h5 = stem_ + name;
-  // The HDF5 file is complete (renamed into place) before the XDMF that lists it is rewritten.
-  write_frame_h5(dir_ / h5, surface);
+  return stem_ + name;
+}
 
-  Frame f{step,
-          time,
-          h5,
-          static_cast<std::int64_t>(surface.points.size() / 3),
-          surface.num_cells(),
-          !surface.displacement.empty(),
-          surface.cell_size,
-          {}};
-  for (const auto& field : surface.cell_data) f.cell_fields.push_back(field.first);
+void XdmfSeries::add_frame(int step, double time, const FrameData& frame) {
+  const std::string h5 = h5_name(step);
+  PetscInt npoints = 0, ncells = 0;
+  if (!frame.geometry || !frame.topology ||
+      VecGetSize(frame.geometry, &npoints) || ISGetSize(frame.topology, &ncells) || npoints == 0 ||
+      ncells == 0)
+    throw std::invalid_argument("XdmfSeries::add_frame: the frame has no points or no cells");
+  // The HDF5 file is complete (renamed into place) before the XDMF that lists it is rewritten.
+  write_frame_h5(comm_, dir_ / h5, frame);
+
+  Frame f{step, time, h5, npoints / 3, ncells / frame.cell_size, frame.displacement != nullptr,
+          frame.cell_size, {}};
+  for (const auto& field : frame.cell_fields) f.cell_fields.push_back(field.first);
   // A restarted run may repeat a step: its new file replaced the old one, so replace the entry.
   auto same =
       std::find_if(frames_.begin(), frames_.end(), [&](const Frame& g) { return g.step == step; });
@@ -189,7 +239,10 @@ void XdmfSeries::add_frame(int step, double time, const SurfaceSample& surface) 
     *same = f;
   else
     frames_.push_back(f);
+  on_rank_zero(comm_, [&] { write_xdmf(); });
+}
 
+void XdmfSeries::write_xdmf() const {
   std::string x;
   x += "<?xml version=\"1.0\" ?>\n";
   x += "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n";

@@ -84,7 +84,10 @@ PetscErrorCode LevelProblem::face_fields(
       std::vector<double> gathered(total);
       PetscCallMPI(MPI_Gatherv(values[k].data(), count, MPI_DOUBLE, gathered.data(), counts.data(),
                                displs.data(), MPI_DOUBLE, 0, layout_.comm()));
-      if (layout_.rank() != 0) continue;
+      if (layout_.rank() != 0) {
+        fields.emplace_back(names[k], std::vector<double>());
+        continue;
+      }
       std::vector<double> natural(num_faces, 0.0);
       for (int i = 0; i < total; ++i) natural[faces[i]] = gathered[i];
       fields.emplace_back(names[k], std::move(natural));

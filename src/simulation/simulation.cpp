@@ -127,11 +127,11 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   output_ = std::make_unique<Output>();
   output_->dir = scene_.output.dir;
   for (const auto& t : problem_->terms()) output_->effect_names.push_back(t->name());
+  output_->sampler = disc_->sampling(scene_.output.samples_per_face);
   if (rank_ == 0) {
     fs::create_directories(output_->dir);
     // A summary left by an earlier run must not pass for this run's result.
     fs::remove(output_->dir / "summary.json");
-    output_->sampler = disc_->sampling(scene_.output.samples_per_face);
   }
 }
 

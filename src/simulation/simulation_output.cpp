@@ -1,5 +1,6 @@
-// Result files of a run (see simulation.hpp): limit-surface frames (HDF5/XDMF, OBJ),
-// checkpoints of converged steps, and summary.json — written by rank 0 from natural-order data.
+// Result files of a run (see simulation.hpp): limit-surface frames (HDF5/XDMF written by all
+// ranks in parallel; OBJ), checkpoints of converged steps, and summary.json (these by rank 0
+// from natural-order data).
 #include "simulation_output.hpp"
 
 #include <algorithm>
@@ -17,33 +18,30 @@ namespace mlshell {
 PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converged) {
   PetscFunctionBeginUser;
   const bool frame_due = force || n % scene_.output.every == 0;
-  std::vector<double> u;
-  PetscCall(layout_->gather_natural(u_, u));
+  const auto& formats = scene_.output.formats;
+  auto has = [&](const char* f) {
+    return std::find(formats.begin(), formats.end(), f) != formats.end();
+  };
   std::vector<std::pair<std::string, std::vector<double>>> fields;
   if (frame_due) PetscCall(problem_->face_fields(u_, disc_->num_faces(), fields));
-  if (rank_ == 0 && frame_due) {
+  if (frame_due && has("xdmf")) PetscCall(write_xdmf_frame(n, t, fields));
+  const bool checkpoint_due = converged && scene_.output.checkpoint_every > 0 && n > 0 &&
+                              n % scene_.output.checkpoint_every == 0;
+  if (!(frame_due && has("obj")) && !checkpoint_due) PetscFunctionReturn(0);
+  std::vector<double> u;
+  PetscCall(layout_->gather_natural(u_, u));
+  if (rank_ == 0 && frame_due && has("obj")) {
     SurfaceSample s = output_->sampler->sample(u);
     // Per-face fields go with samplings that have one cell per face (triangle meshes).
     if (s.num_cells() == disc_->num_faces()) s.cell_data = std::move(fields);
-    const auto& formats = scene_.output.formats;
-    auto has = [&](const char* f) {
-      return std::find(formats.begin(), formats.end(), f) != formats.end();
-    };
-    if (has("xdmf")) {
-      if (!output_->xdmf) output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name);
-      output_->xdmf->add_frame(n, t, s);
-    }
-    if (has("obj")) {
-      char name[64];
-      std::snprintf(name, sizeof name, "frame_%06d.obj", n);
-      std::ostringstream c;
-      c << "mlshell " << scene_.name << " step " << n << " time " << t;
-      write_obj(output_->dir / name, s, c.str());
-    }
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%06d.obj", n);
+    std::ostringstream c;
+    c << "mlshell " << scene_.name << " step " << n << " time " << t;
+    write_obj(output_->dir / name, s, c.str());
   }
   // Only converged states are worth restarting from.
-  if (converged && scene_.output.checkpoint_every > 0 && n > 0 &&
-      n % scene_.output.checkpoint_every == 0) {
+  if (checkpoint_due) {
     std::vector<double> v;
     PetscCall(layout_->gather_natural(v_, v));
     if (rank_ == 0) {
@@ -53,6 +51,44 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
                        {n, t, discretization_fingerprint(*disc_), std::move(u), std::move(v)});
     }
   }
+  PetscFunctionReturn(0);
+}
+
+// Every rank samples its slice of the surface and writes it: nothing is gathered.
+PetscErrorCode Simulation::write_xdmf_frame(
+    int n, double t, const std::vector<std::pair<std::string, std::vector<double>>>& fields) {
+  PetscFunctionBeginUser;
+  if (!output_->xdmf) {
+    output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name, comm_);
+    output_->distributed = std::make_unique<DistributedSampling>(*output_->sampler, *layout_);
+  }
+  FrameData frame;
+  frame.cell_size = output_->distributed->cell_size();
+  PetscCall(output_->distributed->sample(u_, &frame.geometry, &frame.displacement));
+  PetscCall(output_->distributed->topology(&frame.topology));
+  // Per-face fields go with samplings that have one cell per face (triangle meshes); they are
+  // on rank 0 (LevelProblem::face_fields), which holds the whole dataset.
+  if (output_->sampler->num_cells() == disc_->num_faces())
+    for (const auto& [name, values] : fields) {
+      Vec v;
+      PetscCall(VecCreateMPIWithArray(comm_, 1, static_cast<PetscInt>(values.size()),
+                                      PETSC_DETERMINE, values.data(), &v));
+      PetscCall(PetscObjectSetName((PetscObject)v, ("cell_" + name).c_str()));
+      frame.cell_fields.emplace_back(name, v);
+    }
+  auto destroy = [&] {
+    VecDestroy(&frame.geometry);
+    VecDestroy(&frame.displacement);
+    ISDestroy(&frame.topology);
+    for (auto& field : frame.cell_fields) VecDestroy(&field.second);
+  };
+  try {
+    output_->xdmf->add_frame(n, t, frame);
+  } catch (...) {
+    destroy();
+    throw;
+  }
+  destroy();
   PetscFunctionReturn(0);
 }
 

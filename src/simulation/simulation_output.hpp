@@ -1,4 +1,4 @@
-// Rank 0's result files of a Simulation (private to src/simulation).
+// The result files of a Simulation (private to src/simulation).
 #pragma once
 
 #include <cstdint>
@@ -7,18 +7,20 @@
 #include <string>
 #include <vector>
 
+#include "mlshell/distributed_sampling.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
 #include "mlshell/subdivision/surface_sampler.hpp"
 
 namespace mlshell {
 
-/// Rank 0's result files.
+/// The result files (the XDMF series on every rank, the others on rank 0).
 struct Simulation::Output {
   std::filesystem::path dir;
   std::unique_ptr<XdmfSeries> xdmf;
+  std::unique_ptr<DistributedSampling> distributed;  // the frames' sampling, on every rank
   std::unique_ptr<CsvTable> csv;
-  std::unique_ptr<SurfaceSampling> sampler;
+  std::unique_ptr<SurfaceSampling> sampler;  // every rank (the distributed one is made from it)
   std::vector<std::string> effect_names;
 };
 

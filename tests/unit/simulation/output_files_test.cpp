@@ -19,11 +19,14 @@
 #include <string>
 #include <vector>
 
+#include "hdf5_readback.hpp"
 #include "mlshell/scene.hpp"
 #include "mlshell/simulation.hpp"
 
 namespace fs = std::filesystem;
 using mlshell::OutputError;
+using mlshell_test::load_is;
+using mlshell_test::load_vec;
 
 namespace {
 
@@ -222,60 +225,6 @@ TEST_F(OutputFiles, ObjRejectsOutOfRangeIndices) {
 }
 
 // --- XDMF + HDF5 ------------------------------------------------------------------------------
-
-// Reads a Vec dataset back through PETSc's HDF5 viewer; returns its values and block size.
-std::vector<double> load_vec(const fs::path& h5, const char* name, PetscInt* bs) {
-  PetscViewer v = nullptr;
-  Vec x = nullptr;
-  EXPECT_EQ(PetscViewerCreate(PETSC_COMM_SELF, &v), 0);
-  EXPECT_EQ(PetscViewerSetType(v, PETSCVIEWERHDF5), 0);
-  EXPECT_EQ(PetscViewerFileSetMode(v, FILE_MODE_READ), 0);
-  EXPECT_EQ(PetscViewerFileSetName(v, h5.c_str()), 0);
-  EXPECT_EQ(VecCreate(PETSC_COMM_SELF, &x), 0);
-  EXPECT_EQ(PetscObjectSetName(reinterpret_cast<PetscObject>(x), name), 0);
-  std::vector<double> out;
-  if (VecLoad(x, v) == 0) {
-    PetscInt n = 0;
-    const PetscScalar* a = nullptr;
-    VecGetSize(x, &n);
-    VecGetBlockSize(x, bs);
-    VecGetArrayRead(x, &a);
-    out.assign(a, a + n);
-    VecRestoreArrayRead(x, &a);
-  } else {
-    ADD_FAILURE() << "VecLoad of " << name << " from " << h5 << " failed";
-  }
-  VecDestroy(&x);
-  PetscViewerDestroy(&v);
-  return out;
-}
-
-std::vector<std::int64_t> load_is(const fs::path& h5, const char* name, PetscInt* bs) {
-  PetscViewer v = nullptr;
-  IS is = nullptr;
-  EXPECT_EQ(PetscViewerCreate(PETSC_COMM_SELF, &v), 0);
-  EXPECT_EQ(PetscViewerSetType(v, PETSCVIEWERHDF5), 0);
-  EXPECT_EQ(PetscViewerFileSetMode(v, FILE_MODE_READ), 0);
-  EXPECT_EQ(PetscViewerFileSetName(v, h5.c_str()), 0);
-  EXPECT_EQ(ISCreate(PETSC_COMM_SELF, &is), 0);
-  EXPECT_EQ(ISSetType(is, ISGENERAL), 0);
-  EXPECT_EQ(PetscObjectSetName(reinterpret_cast<PetscObject>(is), name), 0);
-  std::vector<std::int64_t> out;
-  if (ISLoad(is, v) == 0) {
-    PetscInt n = 0;
-    const PetscInt* idx = nullptr;
-    ISGetLocalSize(is, &n);
-    ISGetBlockSize(is, bs);
-    ISGetIndices(is, &idx);
-    out.assign(idx, idx + n);
-    ISRestoreIndices(is, &idx);
-  } else {
-    ADD_FAILURE() << "ISLoad of " << name << " from " << h5 << " failed";
-  }
-  ISDestroy(&is);
-  PetscViewerDestroy(&v);
-  return out;
-}
 
 TEST_F(OutputFiles, XdmfSeriesWritesFramesReadableBack) {
   const fs::path out = dir_ / "results";
