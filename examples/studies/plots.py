@@ -148,3 +148,26 @@ def parallel(rows, out):
     ax.set(ylabel="time [s] (-log_view stages)", title="1 vs 2 ranks")
     ax.legend()
     return _save(fig, out, "parallel.png")
+
+
+def scaling(rows, out):
+    """V-cycles (iterations), wall time and peak memory per rank against dofs, per solver."""
+    solvers = list(dict.fromkeys(r["solver"] for r in rows))
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
+    drawn = False
+    for k, solver in enumerate(solvers):
+        ok = [r for r in rows if r["solver"] == solver and r["converged"] == "1"]
+        for ax, column in zip(axes, ("iterations", "wall_time", "peak_rss_mib")):
+            points = [(number(r["dofs"]), number(r[column])) for r in ok if number(r[column])]
+            if points:
+                ax.loglog(*zip(*points), MARKERS[k % len(MARKERS)] + "-", label=solver)
+                drawn = True
+    if not drawn:
+        plt.close(fig)
+        return None
+    for ax, label in zip(axes, ("V-cycles / iterations", "wall time [s]",
+                                "peak resident memory, largest rank [MiB]")):
+        ax.set(xlabel="dofs", ylabel=label)
+        ax.legend(fontsize=7)
+    axes[0].set_title("trampoline, one step dt = 1 (converged runs)")
+    return _save(fig, out, "scaling.png")

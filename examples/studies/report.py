@@ -14,6 +14,11 @@ from context import number, read_csv
 GOAL_SPEEDUP_PEERS = 3.0
 GOAL_SPEEDUP_RANKS = 1.6
 GOAL_DOFS = 51483
+# Issue 13: the scalable RMTR against the best single-level solver, and its V-cycles.
+GOAL_SCALING = ((51483, 3.0), (201243, 5.0))
+GOAL_SCALING_CYCLES = 20
+SCALABLE = "rmtr-patch"
+SINGLE_LEVEL = ("tr", "bnls-mumps")
 
 
 def table(header, rows):
@@ -376,9 +381,70 @@ class Report:
                 ["scene", "refine", "ranks", "event", "time [s]"], body))
         self.image(plots.parallel(rows, self.out))
 
+    # --- scaling (issue 13) ------------------------------------------------------------------
+    def scaling(self):
+        rows = self.csv("scaling")
+        if rows is None:
+            return
+        solvers = list(dict.fromkeys(r["solver"] for r in rows))
+        body = []
+        for refine in sorted({int(r["refine"]) for r in rows}):
+            group = [r for r in rows if r["refine"] == str(refine)]
+            dofs = next((r["dofs"] for r in group if r["dofs"]), "")
+            line = [refine, count(dofs)]
+            for solver in solvers:
+                r = find(group, solver=solver)
+                if r is None:
+                    line.append("not run")
+                elif r["converged"] != "1":
+                    line.append(outcome(r))
+                else:
+                    line.append(f"{outcome(r)} · {seconds(r['wall_time'])} s · "
+                                f"{count(r['peak_rss_mib'])} MiB")
+            body.append(line)
+        self.add("## RMTR at scale: V-cycles, time and memory against resolution\n\n"
+                 "Trampoline, one step of dt = 1, \\|g\\| < 1e-7. Each cell: V-cycles (RMTR) or "
+                 "iterations · wall time · peak resident memory of the largest rank. `rmtr`: "
+                 "Dogleg smoothing (a factorisation per smoothing step); `rmtr-patch`: "
+                 "vertex-patch ST-CG smoothing (none above the coarsest level); `rmtr-paper`: "
+                 "plain ST-CG (§7.3); `tr`: single-level TR + MUMPS; `bnls-mumps`: TAO's "
+                 "line-search Newton + MUMPS.\n\n" +
+                 table(["refine", "dofs"] + solvers, body))
+        self.image(plots.scaling(rows, self.out))
+        patch = [r for r in rows if r["solver"] == SCALABLE]
+        if patch:
+            cycles = [number(r["iterations"]) for r in patch if r["converged"] == "1"]
+            ok = len(cycles) == len(patch) and max(cycles) <= GOAL_SCALING_CYCLES
+            self.goals.append((f"{SCALABLE}: at most {GOAL_SCALING_CYCLES} V-cycles at every "
+                               "resolution (trampoline)",
+                               ", ".join(outcome(r) for r in patch), ok))
+        for dofs, goal in GOAL_SCALING:
+            group = [r for r in rows if r["dofs"] == str(dofs)]
+            if not group:
+                continue
+            singles = [r for r in group if r["solver"] in SINGLE_LEVEL and r["converged"] == "1"]
+            best = min(singles, key=lambda r: number(r["wall_time"]), default=None)
+            for solver in ("rmtr", SCALABLE):
+                r = find(group, solver=solver)
+                t = number(r["wall_time"]) if r and r["converged"] == "1" else None
+                if best and t:
+                    ratio = number(best["wall_time"]) / t
+                    self.headline.append((f"{solver} vs best single-level solver",
+                                          f"trampoline, {dofs:,} dofs",
+                                          f"{best['solver']} takes {ratio:.2f}× its time"))
+                    if solver == SCALABLE:
+                        self.goals.append((f"{SCALABLE} ≥ {goal:g}× faster than the best "
+                                           f"single-level solver at {dofs:,} dofs (trampoline)",
+                                           f"{ratio:.2f}×", ratio >= goal))
+                elif solver == SCALABLE:
+                    self.goals.append((f"{SCALABLE} ≥ {goal:g}× faster than the best "
+                                       f"single-level solver at {dofs:,} dofs (trampoline)",
+                                       "no converged run to compare"
+                                       if best else "no single-level solver converged", False))
+
     def write(self):
         for study in (self.iterations, self.work, self.projection, self.condition,
-                      self.timestep, self.accuracy, self.peers, self.parallel):
+                      self.timestep, self.accuracy, self.peers, self.parallel, self.scaling):
             study()
         m = self.meta
         runs = m.get("runs", [])

@@ -156,14 +156,16 @@ def solver_fields(result):
                   else f"timeout after {result['elapsed']:.0f} s" if result["timed_out"]
                   else f"exit {result['exit_code']}")
         return {**base, "dofs": "", "iterations": "", "linear_iterations": "", "converged": 0,
-                "reason": status, "gradient_norm": "", "wall_time": "", "solve_time": ""}
+                "reason": status, "gradient_norm": "", "wall_time": "", "solve_time": "",
+                "peak_rss_mib": ""}
     v = s["solver"]
     return {**base, "dofs": s["dofs"], "iterations": v["iterations"],
             "linear_iterations": v.get("linear_iterations", ""),
             "converged": int(converged(result)), "reason": v["reason"],
             "gradient_norm": "nan" if s["gradient_norm"] is None else s["gradient_norm"],
             "wall_time": s["wall_time"],
-            "solve_time": v.get("solve_time", "")}
+            "solve_time": v.get("solve_time", ""),
+            "peak_rss_mib": s.get("memory", {}).get("peak_rss_mib_largest_rank", "")}
 
 
 _STAGE = re.compile(r"^\s*\d+:\s+(.+?):\s+([0-9.eE+-]+)\s+([0-9.]+)%")

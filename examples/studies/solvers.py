@@ -17,6 +17,8 @@ SOLVERS = {
     "rmtr": ("RMTR, Dogleg smoothing (mlshell default)", ["-tao_type", "rmtr"]),
     "rmtr-paper": ("RMTR, 10 ST-CG smoothing steps, Dogleg coarse (paper §7.3)",
                    ["-options_file", "@petsc-options/rmtr-paper.yaml"]),
+    "rmtr-patch": ("RMTR, 10 vertex-patch-preconditioned ST-CG smoothing steps, Dogleg coarse "
+                   "(no fine factorisation)", ["-options_file", "@petsc-options/rmtr-patch.yaml"]),
     "tr": ("single-level TR, Dogleg (Alg. 4.1)", ["-tao_type", "tr", "-tao_max_it", "100000"]),
     "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),
     "bnls-mumps": ("TAO bnls, ST-CG + MUMPS LU (line-search Newton)", ["-tao_type", "bnls"]),

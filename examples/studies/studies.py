@@ -9,7 +9,8 @@ study, PNG plots and REPORT.md with the paper's values side by side.
 
 Studies: iterations (Tables 3-5), work (Tables 6-7), projection (Table 8), condition (Fig. 9),
 timestep (Fig. 10), accuracy (error vs wall time, Pareto front), peers (RMTR vs PETSc TAO/SNES
-with GAMG, BoomerAMG, MUMPS), parallel (1 vs 2 ranks, -log_view stages).
+with GAMG, BoomerAMG, MUMPS), parallel (1 vs 2 ranks, -log_view stages), scaling (V-cycles,
+time and peak memory against resolution: Dogleg, vertex-patch and paper smoothers, TR, bnls).
 Every solve runs in OUT/runs/<study>/<case>/ (command.txt, stdout.txt, summary.json)."""
 import argparse
 import datetime
@@ -29,13 +30,15 @@ import study_iterations  # noqa: E402
 import study_parallel  # noqa: E402
 import study_peers  # noqa: E402
 import study_projection  # noqa: E402
+import study_scaling  # noqa: E402
 import study_timestep  # noqa: E402
 import study_work  # noqa: E402
 from context import Context  # noqa: E402
 from runner import SCENES, SOURCE, Runner  # noqa: E402
 
 STUDIES = {m.NAME: m for m in (study_iterations, study_work, study_projection, study_condition,
-                               study_timestep, study_accuracy, study_peers, study_parallel)}
+                               study_timestep, study_accuracy, study_peers, study_parallel,
+                               study_scaling)}
 
 
 def arguments(argv):

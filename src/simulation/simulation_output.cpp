@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <sys/resource.h>
+
 #include "mlshell/effects.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
@@ -136,6 +138,13 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
   PetscReal f, gnorm;
   PetscCall(problem_->report(u_, energies, &f, &gnorm));
   PetscCall(layout_->gather_natural(u_, u));
+  // Peak resident memory of each rank so far (Linux: ru_maxrss in KiB): the largest and the sum.
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  const double mine = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  double peak_largest = 0.0, peak_sum = 0.0;
+  PetscCallMPI(MPI_Reduce(&mine, &peak_largest, 1, MPI_DOUBLE, MPI_MAX, 0, comm_));
+  PetscCallMPI(MPI_Reduce(&mine, &peak_sum, 1, MPI_DOUBLE, MPI_SUM, 0, comm_));
   if (rank_ == 0) {
     Json::Object energy;
     double total = 0.0;
@@ -236,7 +245,9 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"solver", Json(solver)},
         {"material", material},
         {"constraints", Json(constraints)},
-        {"wall_time", Json(MPI_Wtime() - wall_start_)}};
+        {"wall_time", Json(MPI_Wtime() - wall_start_)},
+        {"memory", Json(Json::Object{{"peak_rss_mib_largest_rank", Json(peak_largest)},
+                                     {"peak_rss_mib_all_ranks", Json(peak_sum)}})}};
     if (spectrum_)
       top.emplace_back(
           "hessian",

@@ -25,13 +25,14 @@ EXPECTED_ROWS = {
     "accuracy": 8,          # 2 solvers x 2 resolutions x 2 tolerances
     "peers": 9,             # RMTR + 8 PETSc configurations
     "parallel": 2,          # 1 and 2 ranks
+    "scaling": 9,           # refine 1: 5 solvers; refine 2: 4 (not the paper's ST-CG)
 }
 # Rows quick mode expects to time out or not to run, as (study, scene, reason prefix); none today.
 # Any other row whose run crashed, timed out or was skipped fails the test.
 EXPECTED_FAILED_RUNS = set()
 FAILED_RUN = ("exit ", "timeout", "not run")
 PLOTS = ("iterations.png", "condition.png", "timestep.png", "accuracy_trampoline.png",
-         "peers.png", "parallel.png")
+         "peers.png", "parallel.png", "scaling.png")
 
 
 def fail(message):
@@ -85,6 +86,9 @@ def check(out):
         fail("parallel.csv: a run lacks the -log_view Solve stage time")
     if not read_csv(out / "parallel_events.csv"):
         fail("parallel_events.csv is empty")
+    for r in read_csv(out / "scaling.csv"):
+        if r["converged"] == "1" and not number(r["peak_rss_mib"], 0.0) > 0:
+            fail(f"scaling.csv: {r['solver']} refine {r['refine']} has no peak memory")
     for plot in PLOTS:
         data = (out / plot).read_bytes() if (out / plot).is_file() else b""
         if not data.startswith(b"\x89PNG"):
@@ -92,7 +96,7 @@ def check(out):
     report = (out / "REPORT.md").read_text()
     for heading in ("## Headline", "## Performance goals", "Table 3", "Table 4", "Tables 6–7",
                     "Table 8", "Figure 9", "Figure 10", "## Accuracy vs time",
-                    "## RMTR vs PETSc", "## Parallel"):
+                    "## RMTR vs PETSc", "## Parallel", "## RMTR at scale"):
         if heading not in report:
             fail(f"REPORT.md has no section '{heading}'")
     for plot in PLOTS:

@@ -150,6 +150,29 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| 4.00× | met |", text)
         self.assertRegex(text, r"\| 1\.25×; RMTR on 2 ranks: [^|]*Solve 14 s \| \*\*not met\*\* \|")
 
+    def test_scaling_table_ratios_and_goals(self):
+        write(self.out, "scaling", [
+            run_row("trampoline", 51483, 2, solver="rmtr", refine=5, wall_time=15.0,
+                    peak_rss_mib=1040),
+            run_row("trampoline", 51483, 8, solver="rmtr-patch", refine=5, wall_time=10.0,
+                    peak_rss_mib=864),
+            run_row("trampoline", 51483, 9, solver="tr", refine=5, wall_time=16.0,
+                    peak_rss_mib=927),
+            run_row("trampoline", 51483, 30, 0, solver="bnls-mumps", refine=5, wall_time=8.0),
+            run_row("trampoline", 201243, 25, solver="rmtr-patch", refine=6, wall_time=100.0,
+                    peak_rss_mib=3000),
+            {**run_row("trampoline", "", "", 0, solver="tr", refine=6),
+             "reason": "timeout after 900 s"}])
+        text = self.build()
+        self.assertIn("| 5 | 51,483 | 2 · 15 s · 1,040 MiB | 8 · 10 s · 864 MiB |", text)
+        self.assertIn("timeout after 900 s", text)
+        # The failed bnls run is not the best single-level solver: TR's 16 s is.
+        self.assertIn("tr takes 1.60× its time", text)
+        self.assertIn("| 1.60× | **not met** |", text)
+        self.assertIn("no single-level solver converged | **not met** |", text)
+        self.assertIn("| 8, 25 | **not met** |", text)  # 25 > 20 V-cycles at 201,243 dofs
+        self.assertIn("](scaling.png)", text)
+
     def test_goals_not_measured_are_said_so(self):
         write(self.out, "projection", [run_row("trampoline", 3675, 81, projection="reverse",
                                                levels=4)])
