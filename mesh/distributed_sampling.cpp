@@ -19,7 +19,7 @@ void slice_of(MPI_Comm comm, PetscInt n, PetscInt* begin, PetscInt* end) {
 
 DistributedSampling::DistributedSampling(const SurfaceSampling& sampling,
                                          const ParallelLayout& layout)
-    : comm_(layout.comm()), cell_size_(sampling.cell_size()) {
+    : comm_(layout.comm()), cell_size_(sampling.cell_size()), num_cells_(sampling.num_cells()) {
   PetscInt first, last;
   slice_of(comm_, static_cast<PetscInt>(sampling.num_points()), &first, &last);
   const PetscInt rows = last - first, owned = layout.num_owned_points();

@@ -30,6 +30,8 @@ class DistributedSampling {
   /// A new IS (block size cell_size, named "topology") of this rank's slice of the cells.
   PetscErrorCode topology(IS* cells) const;
   int cell_size() const { return cell_size_; }
+  /// Cells on all ranks together.
+  std::int64_t num_cells() const { return num_cells_; }
 
  private:
   MPI_Comm comm_;
@@ -37,6 +39,7 @@ class DistributedSampling {
   Vec reference_ = nullptr;                       // X, this rank's samples
   std::vector<PetscInt> cells_;                   // this rank's cells
   int cell_size_;
+  std::int64_t num_cells_;
 };
 
 }  // namespace mlshell

@@ -1,6 +1,8 @@
 // Limit-surface sampling for output.
 #include "mlshell/subdivision/surface_sampler.hpp"
 
+#include <algorithm>
+
 namespace mlshell {
 
 std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretization& disc,
@@ -22,12 +24,18 @@ std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretiz
   std::vector<int> nodes;
   std::vector<double> weights;
   const auto& X = disc.mesh().points;
-  for (const PointBasis& b : disc.evaluator().evaluate(pts)) {
-    const Point3 x = b.apply(kValue, X);
-    reference.insert(reference.end(), {x[0], x[1], x[2]});
-    nodes.insert(nodes.end(), b.nodes.begin(), b.nodes.end());
-    weights.insert(weights.end(), b.w[kValue].begin(), b.w[kValue].end());
-    offsets.push_back(static_cast<std::int64_t>(nodes.size()));
+  // In chunks: a PointBasis holds all six derivative slots, and only the values are kept.
+  constexpr size_t kChunk = 4096;
+  for (size_t first = 0; first < pts.size(); first += kChunk) {
+    const std::vector<SurfacePoint> chunk(pts.begin() + first,
+                                          pts.begin() + std::min(pts.size(), first + kChunk));
+    for (const PointBasis& b : disc.evaluator().evaluate(chunk)) {
+      const Point3 x = b.apply(kValue, X);
+      reference.insert(reference.end(), {x[0], x[1], x[2]});
+      nodes.insert(nodes.end(), b.nodes.begin(), b.nodes.end());
+      weights.insert(weights.end(), b.w[kValue].begin(), b.w[kValue].end());
+      offsets.push_back(static_cast<std::int64_t>(nodes.size()));
+    }
   }
   return std::make_unique<SurfaceSampling>(std::move(reference), std::move(offsets),
                                            std::move(nodes), std::move(weights), std::move(cells),

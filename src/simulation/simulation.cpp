@@ -127,7 +127,10 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   output_ = std::make_unique<Output>();
   output_->dir = scene_.output.dir;
   for (const auto& t : problem_->terms()) output_->effect_names.push_back(t->name());
-  output_->sampler = disc_->sampling(scene_.output.samples_per_face);
+  // Rank 0 samples the whole surface (OBJ frames); XDMF frames need it on every rank once.
+  const auto& formats = scene_.output.formats;
+  if (rank_ == 0 || std::find(formats.begin(), formats.end(), "xdmf") != formats.end())
+    output_->sampler = disc_->sampling(scene_.output.samples_per_face);
   if (rank_ == 0) {
     fs::create_directories(output_->dir);
     // A summary left by an earlier run must not pass for this run's result.

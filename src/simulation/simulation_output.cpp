@@ -63,6 +63,8 @@ PetscErrorCode Simulation::write_xdmf_frame(
   if (!output_->xdmf) {
     output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name, comm_);
     output_->distributed = std::make_unique<DistributedSampling>(*output_->sampler, *layout_);
+    // Only rank 0 samples the whole surface again (OBJ frames); the others keep their slice.
+    if (rank_ != 0) output_->sampler.reset();
   }
   FrameData frame;
   frame.cell_size = output_->distributed->cell_size();
@@ -70,7 +72,7 @@ PetscErrorCode Simulation::write_xdmf_frame(
   PetscCall(output_->distributed->topology(&frame.topology));
   // Per-face fields go with samplings that have one cell per face (triangle meshes); they are
   // on rank 0 (LevelProblem::face_fields), which holds the whole dataset.
-  if (output_->sampler->num_cells() == disc_->num_faces())
+  if (output_->distributed->num_cells() == disc_->num_faces())
     for (const auto& [name, values] : fields) {
       Vec v;
       PetscCall(VecCreateMPIWithArray(comm_, 1, static_cast<PetscInt>(values.size()),

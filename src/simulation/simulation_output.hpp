@@ -20,7 +20,8 @@ struct Simulation::Output {
   std::unique_ptr<XdmfSeries> xdmf;
   std::unique_ptr<DistributedSampling> distributed;  // the frames' sampling, on every rank
   std::unique_ptr<CsvTable> csv;
-  std::unique_ptr<SurfaceSampling> sampler;  // every rank (the distributed one is made from it)
+  // The whole sampling: on rank 0, and on the others until the distributed one is made from it.
+  std::unique_ptr<SurfaceSampling> sampler;
   std::vector<std::string> effect_names;
 };
 
