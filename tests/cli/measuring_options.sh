@@ -59,6 +59,8 @@ assert len(rows[0]) == 64 * 9 == len(rows[1]), len(rows[0])  # 64 elements x 3x3
 sag = -min(float(r["uz"]) for r in rows[0])
 assert sag > 1e-3, sag  # the trampoline sags
 assert all(abs(float(a[c]) - float(b[c])) < 1e-12 for a, b in zip(*rows) for c in "XYZ")
+# X, Y, Z are the reference surface: the trampoline is flat at z = 0 before it sags.
+assert max(abs(float(r["Z"])) for r in rows[0]) < 1e-12 * sag, "X, Y, Z are not the reference"
 assert max(abs(float(a["uz"]) - float(b["uz"])) for a, b in zip(*rows)) < 1e-6 * sag
 PY
 
