@@ -6,9 +6,10 @@ from runner import SOURCE, Runner
 
 
 class Context:
-    def __init__(self, runner: Runner, mode: str, out: Path, scenes=None):
+    def __init__(self, runner: Runner, mode: str, out: Path, scenes=None, solvers=None):
         self.runner = runner
         self.selected_scenes = scenes  # None: every scene a study defines
+        self.selected_solvers = solvers  # None: every solver a study compares
         self.mode = mode  # "quick" or "full"
         self.out = Path(out)
         self.source = SOURCE
@@ -22,6 +23,10 @@ class Context:
         chosen = self.pick(quick, full)
         return [s for s in chosen if self.selected_scenes is None or s in self.selected_scenes]
 
+    def solvers(self, chosen):
+        """The solvers of a study, less those --solvers leaves out."""
+        return [s for s in chosen if self.selected_solvers is None or s in self.selected_solvers]
+
     def run(self, study, tag, scene, refine, options=(), **kwargs):
         """Runner.run, remembered: an identical solve asked for by two studies runs once."""
         key = (scene, refine, tuple(map(str, options)),
@@ -30,15 +35,16 @@ class Context:
             self._memo[key] = self.runner.run(study, tag, scene, refine, options, **kwargs)
         return self._memo[key]
 
-    def write_csv(self, name, rows, columns):
+    def write_csv(self, name, rows, columns, key=("scene",)):
         """Writes OUT/<name>.csv (header `columns`), atomically; returns its path. Rows an
-        earlier invocation wrote for other scenes are kept (--scenes runs fill one table)."""
+        earlier invocation wrote for other values of `key` (scenes; for some studies scene and
+        solver) are kept, so that --scenes and --solvers runs fill one table."""
         path = self.out / f"{name}.csv"
         if path.is_file():
             old = read_csv(path)
-            mine = {r["scene"] for r in rows}
+            mine = {tuple(str(r[k]) for k in key) for r in rows}
             if old and list(old[0]) == columns:
-                rows = [r for r in old if r["scene"] not in mine] + list(rows)
+                rows = [r for r in old if tuple(r[k] for k in key) not in mine] + list(rows)
         tmp = path.with_suffix(".csv.tmp")
         with open(tmp, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")

@@ -17,7 +17,7 @@ SOLVERS = {
     "rmtr": ("RMTR, Dogleg smoothing (mlshell default)", ["-tao_type", "rmtr"]),
     "rmtr-paper": ("RMTR, 10 ST-CG smoothing steps, Dogleg coarse (paper §7.3)",
                    ["-options_file", "@petsc-options/rmtr-paper.yaml"]),
-    "rmtr-patch": ("RMTR, 10 vertex-patch-preconditioned ST-CG smoothing steps, Dogleg coarse "
+    "rmtr-patch": ("RMTR, vertex-patch-preconditioned ST-CG smoothing (40 its), Dogleg coarse "
                    "(no fine factorisation)", ["-options_file", "@petsc-options/rmtr-patch.yaml"]),
     "tr": ("single-level TR, Dogleg (Alg. 4.1)", ["-tao_type", "tr", "-tao_max_it", "100000"]),
     "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),

@@ -5,6 +5,7 @@ study, PNG plots and REPORT.md with the paper's values side by side.
   examples/studies/studies.py --quick            minutes: small cases, used by the test suite
   examples/studies/studies.py --full             the paper's resolutions: hours on 2 cores
   examples/studies/studies.py --full --only peers parallel --scenes trampoline
+  examples/studies/studies.py --full --only scaling --solvers rmtr-patch   (refills those rows)
   examples/studies/studies.py --report-only --out DIR   redraw REPORT.md from DIR's CSVs
 
 Studies: iterations (Tables 3-5), work (Tables 6-7), projection (Table 8), condition (Fig. 9),
@@ -35,6 +36,7 @@ import study_timestep  # noqa: E402
 import study_work  # noqa: E402
 from context import Context  # noqa: E402
 from runner import SCENES, SOURCE, Runner  # noqa: E402
+from solvers import SOLVERS  # noqa: E402
 
 STUDIES = {m.NAME: m for m in (study_iterations, study_work, study_projection, study_condition,
                                study_timestep, study_accuracy, study_peers, study_parallel,
@@ -54,6 +56,9 @@ def arguments(argv):
                    help=f"run only these ({', '.join(STUDIES)})")
     p.add_argument("--scenes", nargs="+", metavar="SCENE", choices=list(SCENES),
                    help=f"only these scenes ({', '.join(SCENES)}); default: each study's own")
+    p.add_argument("--solvers", nargs="+", metavar="SOLVER", choices=list(SOLVERS),
+                   help="only these solver configurations (studies that compare several: "
+                        "scaling)")
     p.add_argument("--max-refine", type=int, default=8, metavar="R",
                    help="skip solves finer than geometry.refine R (e.g. 3: at most 3,675 dofs)")
     p.add_argument("--build", default=str(SOURCE / "build"), help="folder holding mlshell")
@@ -91,7 +96,7 @@ def main(argv):
         return 0
     names = a.only or list(STUDIES)
     ctx = Context(Runner(a.build, a.out, a.ranks, a.timeout,
-                         max_refine=a.max_refine), a.mode, a.out, a.scenes)
+                         max_refine=a.max_refine), a.mode, a.out, a.scenes, a.solvers)
     start = time.monotonic()
     for i, name in enumerate(names, 1):
         print(f"studies: [{i}/{len(names)}] {name} ({a.mode}), {time.monotonic() - start:.0f} s "
@@ -100,6 +105,7 @@ def main(argv):
     command = " ".join(["examples/studies/studies.py", f"--{a.mode}"] +
                        (["--only", *a.only] if a.only else []) +
                        (["--scenes", *a.scenes] if a.scenes else []) +
+                       (["--solvers", *a.solvers] if a.solvers else []) +
                        ([f"--timeout {a.timeout:g}"] if a.timeout_given else []) +
                        ([f"--max-refine {a.max_refine}"] if a.max_refine < 8 else []))
     # Several invocations may fill one folder (e.g. --only peers, then --only parallel): the

@@ -12,6 +12,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples" / "studi
 
 import report  # noqa: E402
 import studies  # noqa: E402
+from context import Context, read_csv  # noqa: E402
 from plots import pareto_front  # noqa: E402
 from runner import parse_log_view, solver_fields  # noqa: E402
 from study_accuracy import l2_distance  # noqa: E402
@@ -211,6 +212,24 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| 2 | 1.000e-05 |", front)
         self.assertNotIn("| 3 | 1.000e-04 |", front)  # dominated by rmtr at 2 s
         self.assertTrue((self.out / "accuracy_trampoline.png").is_file())
+
+
+class CsvMerge(unittest.TestCase):
+    def test_a_solver_run_replaces_only_its_own_rows(self):
+        with tempfile.TemporaryDirectory() as d:
+            ctx = Context(runner=None, mode="full", out=Path(d))
+            cols = ["scene", "solver", "wall_time"]
+            ctx.write_csv("t", [{"scene": "a", "solver": "x", "wall_time": 1},
+                                {"scene": "a", "solver": "y", "wall_time": 2},
+                                {"scene": "b", "solver": "x", "wall_time": 3}], cols,
+                          key=("scene", "solver"))
+            ctx.write_csv("t", [{"scene": "a", "solver": "y", "wall_time": 9}], cols,
+                          key=("scene", "solver"))
+            rows = {(r["scene"], r["solver"]): r["wall_time"] for r in read_csv(Path(d) / "t.csv")}
+            self.assertEqual(rows, {("a", "x"): "1", ("b", "x"): "3", ("a", "y"): "9"})
+            ctx.write_csv("t", [{"scene": "a", "solver": "z", "wall_time": 5}], cols)
+            rows = {(r["scene"], r["solver"]) for r in read_csv(Path(d) / "t.csv")}
+            self.assertEqual(rows, {("b", "x"), ("a", "z")})  # by scene: all of a's rows go
 
 
 class FailedRuns(unittest.TestCase):
