@@ -12,8 +12,9 @@
 // still go through MatSetValuesBlockedLocal (PETSc's stash sends them at assembly).
 //
 // This plays the part of PETSc's COO assembly (MatSetPreallocationCOO / MatSetValuesCOO)
-// without its per-value index arrays: those would hold two indices per element entry, 1.4×
-// the matrix itself for 16-point elements, where this holds one integer per local point.
+// without its per-entry index arrays: element entries outnumber the matrix's nonzeros about
+// five to one for 16-point Catmull–Clark elements (37.7 M against 7.6 M at 51,483 dofs), where
+// this holds one integer per local point.
 #pragma once
 
 #include <petscmat.h>
