@@ -73,6 +73,15 @@ Vec borrow_vector(const std::vector<double>& data, const char* name,
   return v;
 }
 
+/// Rank 0's `text` on every rank.
+std::string broadcast(MPI_Comm comm, std::string text) {
+  int length = static_cast<int>(text.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  text.resize(length);
+  MPI_Bcast(text.data(), length, MPI_CHAR, 0, comm);
+  return text;
+}
+
 /// Runs `f` on rank 0 and throws the same OutputError on every rank if it threw there, so
 /// that no rank goes on to a collective call the others have left.
 template <class F>
@@ -86,19 +95,8 @@ void on_rank_zero(MPI_Comm comm, F&& f) {
       error = e.what();
       if (error.empty()) error = "unknown error";
     }
-  int length = static_cast<int>(error.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  error.resize(length);
-  MPI_Bcast(error.data(), length, MPI_CHAR, 0, comm);
-  if (length) throw OutputError(error);
-}
-
-std::string broadcast(MPI_Comm comm, std::string text) {
-  int length = static_cast<int>(text.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  text.resize(length);
-  MPI_Bcast(text.data(), length, MPI_CHAR, 0, comm);
-  return text;
+  error = broadcast(comm, std::move(error));
+  if (!error.empty()) throw OutputError(error);
 }
 
 void write_frame_h5(MPI_Comm comm, const std::filesystem::path& file, const FrameData& frame) {

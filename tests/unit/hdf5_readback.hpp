@@ -12,14 +12,21 @@
 
 namespace mlshell_test {
 
-// Reads a Vec dataset back through PETSc's HDF5 viewer; returns its values and block size.
-inline std::vector<double> load_vec(const std::filesystem::path& h5, const char* name, PetscInt* bs) {
+/// PETSc's HDF5 viewer reading `h5` on this process.
+inline PetscViewer open_reader(const std::filesystem::path& h5) {
   PetscViewer v = nullptr;
-  Vec x = nullptr;
   EXPECT_EQ(PetscViewerCreate(PETSC_COMM_SELF, &v), 0);
   EXPECT_EQ(PetscViewerSetType(v, PETSCVIEWERHDF5), 0);
   EXPECT_EQ(PetscViewerFileSetMode(v, FILE_MODE_READ), 0);
   EXPECT_EQ(PetscViewerFileSetName(v, h5.c_str()), 0);
+  return v;
+}
+
+// Reads a Vec dataset back through PETSc's HDF5 viewer; returns its values and block size.
+inline std::vector<double> load_vec(const std::filesystem::path& h5, const char* name,
+                                    PetscInt* bs) {
+  PetscViewer v = open_reader(h5);
+  Vec x = nullptr;
   EXPECT_EQ(VecCreate(PETSC_COMM_SELF, &x), 0);
   EXPECT_EQ(PetscObjectSetName(reinterpret_cast<PetscObject>(x), name), 0);
   std::vector<double> out;
@@ -39,13 +46,10 @@ inline std::vector<double> load_vec(const std::filesystem::path& h5, const char*
   return out;
 }
 
-inline std::vector<std::int64_t> load_is(const std::filesystem::path& h5, const char* name, PetscInt* bs) {
-  PetscViewer v = nullptr;
+inline std::vector<std::int64_t> load_is(const std::filesystem::path& h5, const char* name,
+                                         PetscInt* bs) {
+  PetscViewer v = open_reader(h5);
   IS is = nullptr;
-  EXPECT_EQ(PetscViewerCreate(PETSC_COMM_SELF, &v), 0);
-  EXPECT_EQ(PetscViewerSetType(v, PETSCVIEWERHDF5), 0);
-  EXPECT_EQ(PetscViewerFileSetMode(v, FILE_MODE_READ), 0);
-  EXPECT_EQ(PetscViewerFileSetName(v, h5.c_str()), 0);
   EXPECT_EQ(ISCreate(PETSC_COMM_SELF, &is), 0);
   EXPECT_EQ(ISSetType(is, ISGENERAL), 0);
   EXPECT_EQ(PetscObjectSetName(reinterpret_cast<PetscObject>(is), name), 0);
