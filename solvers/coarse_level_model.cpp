@@ -11,7 +11,7 @@ CoarseLevelModel::~CoarseLevelModel() {
   VecDestroy(&work_);
 }
 
-PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, PetscReal* h0) {
+PetscErrorCode CoarseLevelModel::set_start(Vec x0) {
   PetscFunctionBeginUser;
   if (!x0_) {
     PetscCall(VecDuplicate(x0, &x0_));
@@ -19,11 +19,26 @@ PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, Pet
     PetscCall(VecDuplicate(x0, &work_));
   }
   PetscCall(VecCopy(x0, x0_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, PetscReal* h0) {
+  PetscFunctionBeginUser;
+  PetscCall(set_start(x0));
   PetscReal f0;
   PetscCall(level_.objective(x0_, &f0, delta_g_));          // ∇f(x₀)
   PetscCall(VecAYPX(delta_g_, -1.0, restricted_gradient));  // δg = R∇h_fine − ∇f(x₀)
   PetscCall(VecNorm(delta_g_, NORM_2, &delta_g_norm_));
   if (h0) *h0 = f0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CoarseLevelModel::initialize_unmodified(Vec x0, PetscReal* f0, Vec g0) {
+  PetscFunctionBeginUser;
+  PetscCall(set_start(x0));
+  PetscCall(VecSet(delta_g_, 0.0));
+  delta_g_norm_ = 0.0;
+  PetscCall(level_.objective(x0_, f0, g0));
   PetscFunctionReturn(0);
 }
 

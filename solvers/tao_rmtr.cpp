@@ -33,6 +33,11 @@
 //   -tao_rmtr_smoother_pc none       preconditioner of the STCG smoother: none (the paper), or
 //                                    vpatch (vertex-patch Schwarz, vertex_patch_pc.hpp), or any PC
 //   -tao_rmtr_hessian_lag 0          accepted steps a level keeps its Hessian (LocalTrustRegion)
+//   -tao_rmtr_fmg_cycles 0           full-multigrid start: before the first V-cycle, solve each
+//                                    coarser level's own problem f^l with this many V-cycles,
+//                                    coarsest first, each starting from the coarser solution
+//                                    prolongated (where that lowers f^l); the finest level starts
+//                                    from the prolongated solution if it lowers f^L (0: off)
 //   -tao_rmtr_monitor                one line per V-cycle
 //   per-level QP options, PCMG style: -rmtr_levels_<l>_ksp_max_it, -rmtr_levels_<l>_pc_type ...
 //   for levels l ≥ 1 and -rmtr_coarse_pc_factor_mat_solver_type mumps ... for level 0.
@@ -76,7 +81,7 @@ struct RmtrContext {
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0;
   char smoother_pc[64] = "none";
-  PetscInt hessian_lag = 0;
+  PetscInt hessian_lag = 0, fmg_cycles = 0;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
@@ -296,6 +301,66 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
   PetscFunctionReturn(0);
 }
 
+/// Copies `candidate` into `current` if f is finite and lower there; *taken says whether.
+PetscErrorCode keep_lower(Objective& f, Vec candidate, PetscReal f_current, Vec current,
+                          bool* taken) {
+  PetscFunctionBeginUser;
+  PetscReal fc;
+  PetscCall(f.objective(candidate, &fc, nullptr));
+  *taken = std::isfinite(fc) && fc < f_current;
+  if (*taken) PetscCall(VecCopy(candidate, current));
+  PetscFunctionReturn(0);
+}
+
+/// The full-multigrid start (-tao_rmtr_fmg_cycles k): level by level from the coarsest, k
+/// V-cycles on the level's own problem h^l = f^l (δg = 0), started from the coarser level's
+/// solution prolongated where that is lower in f^l than the projected fine iterate (eq. 4.6);
+/// finally the finest iterate becomes the prolongated solution of level L − 1 if that lowers
+/// f^L below `f_fine`, its value at the given iterate. The energy never rises.
+PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine) {
+  const int L = finest(c);
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(tao));
+  PetscFunctionBeginUser;
+  for (int l = L; l > 0; --l)
+    PetscCall(project(c, l, l == L ? tao->solution : c.levels[l].x0, c.levels[l - 1].x0));
+  std::vector<long> successful(c.levels.size(), 0);
+  for (int l = 0; l < L; ++l) {
+    Level& lv = c.levels[l];
+    PetscReal f0;
+    if (l > 0) {
+      Objective& f = c.hierarchy->level_objective(c.offset + l);
+      bool taken;
+      PetscCall(f.objective(lv.x0, &f0, nullptr));
+      PetscCall(transfer(c, l).prolong(c.levels[l - 1].tr->solution(), lv.trial));
+      PetscCall(keep_lower(f, lv.trial, std::isfinite(f0) ? f0 : PETSC_INFINITY, lv.x0, &taken));
+    }
+    PetscCall(lv.model->initialize_unmodified(lv.x0, &f0, lv.restricted));
+    PetscCall(lv.tr->start(lv.x0, &f0, lv.restricted));
+    if (!lv.tr->finite()) PetscFunctionReturn(0);  // a projected state outside the material's domain
+    PetscReal delta = c.delta0;
+    PetscInt k = 0;
+    for (; k < c.fmg_cycles && lv.tr->gradient_norm() > tao->gatol && delta > 0.0; ++k)
+      PetscCall(cycle(tao, c, l, PETSC_INFINITY, &delta, successful));
+    c.stats.fmg_cycles += k;
+    if (c.monitor)
+      PetscCall(PetscPrintf(comm,
+                            "  rmtr fmg level %d (%" PetscInt_FMT " dofs): %" PetscInt_FMT
+                            " V-cycle(s), f % .12e  |g| %.4e\n",
+                            l, lv.stats.dofs, k, (double)lv.tr->value(),
+                            (double)lv.tr->gradient_norm()));
+  }
+  Level& top = c.levels[L];
+  PetscCall(transfer(c, L).prolong(c.levels[L - 1].tr->solution(), top.trial));
+  bool taken;
+  PetscCall(keep_lower(*top.objective, top.trial, f_fine, tao->solution, &taken));
+  if (taken)  // the coarse steps now live on in the finest iterate
+    for (int l = 0; l < L; ++l) c.stats.levels[l].successful += successful[l];
+  if (c.monitor)
+    PetscCall(PetscPrintf(comm, "  rmtr fmg: the finest level starts from %s\n",
+                          taken ? "the prolongated solution" : "its own iterate (lower energy)"));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode collect_statistics(RmtrContext& c) {
   PetscFunctionBeginUser;
   const int L = finest(c);
@@ -332,12 +397,25 @@ PetscErrorCode solve(Tao tao) {
   }
   c->stats = RmtrStatistics{};
   c->stats.levels.resize(c->levels.size());
-  PetscCall(top.tr->start(tao->solution));
-  PetscReal delta = c->delta0;
-  const PetscReal g0 = top.tr->gradient_norm();
   c->limiting = false;
   c->stopping.reset_floor();
   tao->reason = TAO_CONTINUE_ITERATING;
+  // Iteration 0 is the given iterate, also when the full-multigrid start moves it: tolerances
+  // relative to ‖g₀‖ and the energy history refer to it.
+  PetscReal f_in = 0.0, g0 = 0.0;
+  const bool fmg = c->fmg_cycles > 0 && L > 0;
+  if (fmg) {
+    PetscCall(top.objective->objective(tao->solution, &f_in, tao->gradient));
+    PetscCall(VecNorm(tao->gradient, NORM_2, &g0));
+    if (std::isfinite(f_in) && std::isfinite(g0) && g0 > tao->gatol)
+      PetscCall(fmg_start(tao, *c, f_in));
+  }
+  PetscCall(top.tr->start(tao->solution));
+  PetscReal delta = c->delta0;
+  if (!fmg) {
+    f_in = top.tr->value();
+    g0 = top.tr->gradient_norm();
+  }
   if (!top.tr->finite()) {  // nothing to iterate on: say so instead of producing NaN
     tao->reason = TAO_DIVERGED_NAN;
     tao->fc = top.tr->value();
@@ -345,10 +423,14 @@ PetscErrorCode solve(Tao tao) {
     PetscCall(collect_statistics(*c));
     PetscFunctionReturn(0);
   }
-  PetscCall(
-      TaoLogConvergenceHistory(tao, top.tr->value(), top.tr->gradient_norm(), 0.0, tao->ksp_its));
-  PetscCall(TaoMonitor(tao, tao->niter, top.tr->value(), top.tr->gradient_norm(), 0.0, delta));
+  PetscCall(TaoLogConvergenceHistory(tao, f_in, g0, 0.0, tao->ksp_its));
+  PetscCall(TaoMonitor(tao, tao->niter, f_in, g0, 0.0, delta));
   PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
+  if (tao->reason != TAO_CONTINUE_ITERATING && fmg) {  // converged at the moved iterate
+    PetscCall(VecCopy(top.tr->gradient(), tao->gradient));
+    tao->fc = top.tr->value();
+    tao->residual = top.tr->gradient_norm();
+  }
   Vec previous;
   PetscCall(VecDuplicate(tao->solution, &previous));
   while (tao->reason == TAO_CONTINUE_ITERATING) {
@@ -430,6 +512,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsReal("-tao_rmtr_eps_delta", "coarse-correction threshold (Alg. 4.3)", "",
                              c->eps_delta, &c->eps_delta, nullptr));
   PetscCall(c->stopping.options(PetscOptionsObject, "-tao_rmtr_"));
+  PetscCall(PetscOptionsInt("-tao_rmtr_fmg_cycles",
+                            "full-multigrid start: V-cycles on each coarser level's own problem "
+                            "before the finest (0: off)",
+                            "", c->fmg_cycles, &c->fmg_cycles, nullptr));
   PetscCall(PetscOptionsBool("-tao_rmtr_monitor", "one line per V-cycle", "", c->monitor,
                              &c->monitor, nullptr));
   PetscCall(PetscOptionsBool("-tao_rmtr_check_consistency",
@@ -448,6 +534,8 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   if (c->coarse_max_it < 0) c->coarse_max_it = c->mu1 + c->mu2;
   PetscCheck(c->coarse_max_it >= 1 && c->stcg_max_it >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_coarse_max_it and -tao_rmtr_stcg_max_it must be >= 1");
+  PetscCheck(c->fmg_cycles >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_fmg_cycles must be >= 0, got %" PetscInt_FMT, c->fmg_cycles);
   PetscCheck(c->hessian_lag >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_hessian_lag must be >= 0, got %" PetscInt_FMT, c->hessian_lag);
   PetscCheck(c->delta0 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -477,6 +565,10 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
       viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",
       (double)c->delta0, (double)c->params.eta1, (double)c->params.eta2, (double)c->params.gamma1,
       (double)c->params.gamma2, (double)c->eps_delta));
+  if (c->fmg_cycles > 0)
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "  full-multigrid start: %" PetscInt_FMT " V-cycle(s) per coarser level\n",
+        c->fmg_cycles));
   if (c->stats.cycles > 0) {
     PetscCall(PetscViewerASCIIPrintf(
         viewer,
@@ -495,6 +587,11 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
         c->stats.cycles, c->stats.assembly_work_units,
         c->stats.assembly_work_units / c->stats.cycles, c->stats.qp_work_units,
         c->stats.qp_work_units / c->stats.cycles));
+    if (c->stats.fmg_cycles > 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer,
+                                       "  full-multigrid start: %ld V-cycles on the coarser levels "
+                                       "(in the counts above)\n",
+                                       c->stats.fmg_cycles));
   }
   PetscFunctionReturn(0);
 }
@@ -535,6 +632,7 @@ RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
     a.coarse_rejected += b.coarse_rejected;
   }
   cycles += o.cycles;
+  fmg_cycles += o.fmg_cycles;
   max_correction_ratio = std::max(max_correction_ratio, o.max_correction_ratio);
   max_consistency_error = std::max(max_consistency_error, o.max_consistency_error);
   max_projection_misfit = std::max(max_projection_misfit, o.max_projection_misfit);

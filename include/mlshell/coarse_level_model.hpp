@@ -19,6 +19,9 @@ class CoarseLevelModel final : public Objective {
   /// Starts a coarse cycle at x₀ with the restricted fine gradient R ∇h_fine; returns
   /// f(x₀) = h(x₀) in *f0 if not null.
   PetscErrorCode initialize(Vec x0, Vec restricted_gradient, PetscReal* f0 = nullptr);
+  /// Starts the level's own problem at x₀, h = f (δg = 0: RMTR's full-multigrid start solves
+  /// the coarse levels' problems before the finest); f(x₀) and ∇f(x₀) into *f0 and g0.
+  PetscErrorCode initialize_unmodified(Vec x0, PetscReal* f0, Vec g0);
   PetscErrorCode objective(Vec x, PetscReal* h, Vec g) override;
   PetscErrorCode hessian(Vec x, Mat H) override { return level_.hessian(x, H); }
   /// The level's error plus that of ⟨δg, x − x₀⟩ at the last point, 8 ε ‖δg‖ ‖x − x₀‖.
@@ -33,6 +36,7 @@ class CoarseLevelModel final : public Objective {
   PetscErrorCode accepted(Vec x) override { return level_.accepted(x); }
 
  private:
+  PetscErrorCode set_start(Vec x0);  // allocates on first use, copies x0
   Objective& level_;
   Vec x0_ = nullptr, delta_g_ = nullptr, work_ = nullptr;
   PetscReal delta_g_norm_ = 0.0;

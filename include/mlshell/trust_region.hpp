@@ -36,6 +36,8 @@ struct RmtrLevelStatistics {
 struct RmtrStatistics {
   std::vector<RmtrLevelStatistics> levels;
   long cycles = 0;
+  /// V-cycles of the full-multigrid start on the coarser levels (-tao_rmtr_fmg_cycles).
+  long fmg_cycles = 0;
   /// W of eq. (7.3): Σ_l 2^{−2(L−l)} Q^l, for assemblies and for QP solves.
   double assembly_work_units = 0.0, qp_work_units = 0.0;
   /// Checks of the theory, over all coarse-level corrections: max ‖I s‖_l / Δ^l (eq. 4.7, must

@@ -136,11 +136,14 @@ TEST(Rmtr, CoarseLevelsDoTheWorkAndTheAccountsAddUp) {
 }
 
 TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
-  // Record f after every V-cycle through TAO's convergence history; Dogleg smoothing and STCG
-  // with vertex patches.
-  for (const bool patches : {false, true}) {
+  // Record f after every V-cycle through TAO's convergence history; Dogleg smoothing, STCG
+  // with vertex patches, and the same after a full-multigrid start (f₀ is the given iterate's
+  // energy, the first V-cycle starts from the prolongated coarse solution).
+  for (const int variant : {0, 1, 2}) {
+    const bool patches = variant > 0;
     ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
-                             {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"}});
+                             {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
+                             {"-tao_rmtr_fmg_cycles", variant == 2 ? "1" : "0"}});
     const Scene scene = example("trampoline.yaml", 2, 1);
     SubdivisionHierarchy sub(build_cage(scene.geometry), 2);
     LevelHierarchy levels(PETSC_COMM_SELF, sub, 0, 3);
@@ -161,9 +164,66 @@ TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
     TaoGetConvergenceHistory(solver.tao(), &f, nullptr, nullptr, nullptr, &n);
     ASSERT_GE(n, 2);
     for (PetscInt i = 1; i < n; ++i) EXPECT_LE(f[i], f[i - 1]) << "V-cycle " << i;
+    RmtrStatistics stats;
+    rmtr_statistics(solver.tao(), &stats);
+    EXPECT_EQ(stats.fmg_cycles > 0, variant == 2) << stats.fmg_cycles;
     VecDestroy(&u);
     VecDestroy(&v);
   }
+}
+
+// The full-multigrid start (-tao_rmtr_fmg_cycles): each coarser level's own problem is solved
+// before the finest, which starts from the prolongated solution. It keeps the theory's checks
+// ((4.5) at every coarse start, (4.7) for every correction) and reaches TR's minimiser on 2 and 3
+// levels; and since the coarse problems approximate the fine one, the finest level needs fewer
+// V-cycles than from the given iterate (the trampoline at 1,083 dofs on 3 levels).
+TEST(Rmtr, FullMultigridStartKeepsTheTheoryAndSavesFineCycles) {
+  ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", "stcg"}, {"-tao_rmtr_smoother_pc", "vpatch"}});
+  for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
+    const Scene scene = example(file, 2, 1);
+    Outcome tr;
+    {
+      ScopedOptions o({{"-tao_type", "tr"}});
+      tr = solve(scene, "fmg-tr");
+    }
+    ASSERT_EQ(tr.status, 0) << file;
+    for (const char* levels : {"2", "3"}) {
+      const std::string what = std::string(file) + " " + levels + " levels";
+      ScopedOptions o({{"-tao_rmtr_levels", levels}, {"-tao_rmtr_check_consistency", "1"}});
+      const Outcome plain = solve(scene, "fmg-plain");
+      Outcome fmg;
+      {
+        ScopedOptions f({{"-tao_rmtr_fmg_cycles", "1"}});
+        fmg = solve(scene, "fmg");
+      }
+      ASSERT_EQ(plain.status, 0) << what;
+      ASSERT_EQ(fmg.status, 0) << what;
+      EXPECT_EQ(fmg.rmtr.fmg_cycles, std::stoi(levels) - 1) << what;
+      EXPECT_NEAR(fmg.energy, tr.energy, 1e-10 * std::abs(tr.energy)) << what;
+      EXPECT_LT(max_difference(fmg.u, tr.u), 1e-6 * max_abs(tr.u)) << what;
+      EXPECT_LE(fmg.rmtr.max_correction_ratio, 1.0 + 1e-12) << what;
+      EXPECT_LT(fmg.rmtr.max_consistency_error, 1e-8) << what;
+      if (std::string(file) == "trampoline.yaml" && std::string(levels) == "3") {
+        // With two levels the start is one V-cycle on 147 dofs, and the nearly linear plate
+        // takes two fine V-cycles either way; the trampoline's full hierarchy saves cycles.
+        EXPECT_LT(fmg.iterations, plain.iterations) << what;
+        EXPECT_LT(fmg.fine_hessians, plain.fine_hessians) << what;
+      }
+    }
+  }
+  // Four levels (3,675 dofs): each level starts from the coarser level's solution, so one
+  // V-cycle per level leaves the finest level two V-cycles (measured; five without the start,
+  // eight when each level starts from the projected fine iterate instead).
+  const Scene finer = example("trampoline.yaml", 3, 1);
+  const Outcome plain = solve(finer, "fmg-plain-4");
+  ScopedOptions f({{"-tao_rmtr_fmg_cycles", "1"}});
+  const Outcome fmg = solve(finer, "fmg-4");
+  ASSERT_EQ(plain.status, 0);
+  ASSERT_EQ(fmg.status, 0);
+  EXPECT_EQ(fmg.rmtr.fmg_cycles, 3);
+  EXPECT_LE(fmg.iterations, 2);
+  EXPECT_LT(fmg.iterations, plain.iterations);
+  EXPECT_NEAR(fmg.energy, plain.energy, 1e-10 * std::abs(plain.energy));
 }
 
 // The paper's smoother (ten plain STCG iterations) leaves near-null modes of the ghost ring and
@@ -278,6 +338,7 @@ TEST(Rmtr, RejectsNonsenseOptionsWithTheirNames) {
   for (auto [name, value, needle] : {std::tuple{"-tao_rmtr_eta1", "0.9", "-tao_rmtr_eta1 = 0.9"},
                                      {"-tao_rmtr_eps_delta", "2", "eps_delta"},
                                      {"-tao_rmtr_mu1", "-1", "mu1"},
+                                     {"-tao_rmtr_fmg_cycles", "-2", "-tao_rmtr_fmg_cycles"},
                                      {"-tao_rmtr_stagnation", "-1", "-tao_rmtr_stagnation"},
                                      {"-tao_rmtr_projection", "foo", "-tao_rmtr_projection"}}) {
     TaoCreate(PETSC_COMM_SELF, &tao);
