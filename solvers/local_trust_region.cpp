@@ -142,14 +142,21 @@ PetscErrorCode LocalTrustRegion::assemble_derivatives(bool force) {
   PetscCall(VecNorm(g_, NORM_2, &gnorm_));
   finite_ = std::isfinite(fx_) && std::isfinite(gnorm_);
   if (!finite_) PetscFunctionReturn(0);
-  if (force || kept_ >= hessian_lag_) {
-    PetscCall(f_.hessian(x_, H_));
-    ++counters_.hessians;
-    PetscCall(qp_->set_operator(H_));
-    kept_ = 0;
-  } else {
+  if (force || kept_ >= hessian_lag_)
+    hessian_due_ = true;
+  else
     ++kept_;
-  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalTrustRegion::ensure_hessian() {
+  PetscFunctionBeginUser;
+  if (!hessian_due_) PetscFunctionReturn(0);
+  PetscCall(f_.hessian(x_, H_));
+  ++counters_.hessians;
+  PetscCall(qp_->set_operator(H_));
+  kept_ = 0;
+  hessian_due_ = false;
   PetscFunctionReturn(0);
 }
 
@@ -199,6 +206,7 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
     PetscCall(level_norm(g_, &glevel));
     if (glevel > 0) qp_radius = *delta * gnorm_ / glevel;
   }
+  PetscCall(ensure_hessian());
   PetscCall(qp_->solve(g_, qp_radius, s_, it->qp));
   ++counters_.qp_solves;
   PetscReal model_decrease = it->qp.model_decrease;

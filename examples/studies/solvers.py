@@ -17,8 +17,13 @@ SOLVERS = {
     "rmtr": ("RMTR, Dogleg smoothing (mlshell default)", ["-tao_type", "rmtr"]),
     "rmtr-paper": ("RMTR, 10 ST-CG smoothing steps, Dogleg coarse (paper §7.3)",
                    ["-options_file", "@petsc-options/rmtr-paper.yaml"]),
-    "rmtr-patch": ("RMTR, vertex-patch-preconditioned ST-CG smoothing (40 its), Dogleg coarse "
-                   "(no fine factorisation)", ["-options_file", "@petsc-options/rmtr-patch.yaml"]),
+    "rmtr-patch": ("RMTR, full-multigrid start, vertex-patch-preconditioned ST-CG smoothing "
+                   "(40 its), Dogleg coarse (no fine factorisation)",
+                   ["-options_file", "@petsc-options/rmtr-patch.yaml"]),
+    "rmtr-patch-vcycles": ("RMTR as rmtr-patch, V-cycles from the given iterate (no "
+                           "full-multigrid start)",
+                           ["-options_file", "@petsc-options/rmtr-patch.yaml",
+                            "-tao_rmtr_fmg_cycles", "0"]),
     "tr": ("single-level TR, Dogleg (Alg. 4.1)", ["-tao_type", "tr", "-tao_max_it", "100000"]),
     "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),
     "bnls-mumps": ("TAO bnls, ST-CG + MUMPS LU (line-search Newton)", ["-tao_type", "bnls"]),

@@ -3,8 +3,9 @@
 //
 // One iteration solves the subproblem (4.1) with the level's QP solver, evaluates the trial
 // point, accepts it when ρ = (f(x) − f(x+s)) / (m(0) − m(s)) > η₁ (eq. 4.2), and updates the
-// radius (Table 2). Derivatives are reassembled only after an accepted step, so a rejected step
-// reuses the Hessian (and a Dogleg factorisation).
+// radius (Table 2). The gradient is reassembled after an accepted step, the Hessian only when the
+// next subproblem needs it (a point left at once by RMTR's coarse correction, or the converged
+// one, costs none), so a rejected step reuses the Hessian (and a Dogleg factorisation).
 //
 // The radius may be measured in a level norm other than ℓ₂ (RMTR's ‖·‖_l, eq. 4.9): the QP is
 // then given the ℓ₂ radius Δ·‖g‖₂/‖g‖_l, and a step still longer than Δ in the level norm is
@@ -83,7 +84,7 @@ struct TrustRegionCounters {
   long accepted = 0;    ///< successful iterations
   long qp_solves = 0;   ///< subproblem solves
   long objectives = 0;  ///< trial-point evaluations
-  long hessians = 0;    ///< derivative assemblies (gradient and Hessian)
+  long hessians = 0;    ///< Hessian assemblies (each where a subproblem needed one)
   TrustRegionCounters& operator+=(const TrustRegionCounters& o) {
     accepted += o.accepted;
     qp_solves += o.qp_solves;
@@ -115,15 +116,15 @@ class LocalTrustRegion {
   LocalTrustRegion(const LocalTrustRegion&) = delete;
   LocalTrustRegion& operator=(const LocalTrustRegion&) = delete;
 
-  /// Moves to x and assembles f, ∇f and ∇²f there. A value and gradient already known at x can
-  /// be passed to skip their evaluation. If f or ∇f is not finite there, finite() turns false and
-  /// no iteration may follow.
+  /// Moves to x and evaluates f and ∇f there (∇²f before the next iteration). A value and
+  /// gradient already known at x can be passed to skip their evaluation. If f or ∇f is not
+  /// finite there, finite() turns false and no iteration may follow.
   PetscErrorCode start(Vec x, const PetscReal* f = nullptr, Vec g = nullptr);
   /// One iteration of Alg. 4.1 with radius *delta (updated with `p`).
   PetscErrorCode iterate(const TrustRegionParameters& p, PetscReal* delta,
                          TrustRegionIteration* it);
-  /// Moves to x + s and reassembles the value and derivatives there (the Hessian as the lag
-  /// allows).
+  /// Moves to x + s and reassembles the value and gradient there (the Hessian before the next
+  /// iteration, as the lag allows).
   PetscErrorCode accept(Vec s);
   /// ‖v‖ in the level norm.
   PetscErrorCode level_norm(Vec v, PetscReal* norm) const;
@@ -143,9 +144,13 @@ class LocalTrustRegion {
   void set_hessian_lag(int lag) { hessian_lag_ = lag; }
 
  private:
-  /// ‖∇f‖ and finiteness at x_; the Hessian if `force` or it has been kept `hessian_lag_` times.
+  /// ‖∇f‖ and finiteness at x_; marks the Hessian due if `force` or it has been kept
+  /// `hessian_lag_` times.
   PetscErrorCode assemble_derivatives(bool force);
-  /// Counts an accepted step at the new x_, f and ∇f, and assembles the Hessian there.
+  /// Assembles a due Hessian at x_ (and hands it to the QP): only when a subproblem needs it, so
+  /// that a point left by a coarse correction or at convergence costs no Hessian.
+  PetscErrorCode ensure_hessian();
+  /// Counts an accepted step at the new x_, f and ∇f, and marks its Hessian due.
   PetscErrorCode accepted();
   Objective& f_;
   Mat H_;
@@ -155,6 +160,7 @@ class LocalTrustRegion {
   PetscReal fx_ = 0.0, gnorm_ = 0.0;
   bool finite_ = false;
   int hessian_lag_ = 0, kept_ = 0;  // accepted steps the current Hessian has been kept
+  bool hessian_due_ = false;         // x_ moved past the Hessian's point: assemble before a QP
   TrustRegionCounters counters_;
 };
 

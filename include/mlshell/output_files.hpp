@@ -37,7 +37,8 @@ struct MaterialSpec;
 /// psi, s11, s22, s12, beyond_fit, coupling_limited.
 void write_material_table(const MaterialSpec& spec, const std::filesystem::path& path);
 
-/// Wavefront OBJ of a sampled surface (v and f lines, 1-based indices, `%.17g` coordinates).
+/// Wavefront OBJ of a sampled surface (v and f lines, 1-based indices, coordinates as the
+/// shortest text that reads back exactly).
 void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
                const std::string& comment);
 
@@ -93,7 +94,8 @@ class XdmfSeries {
 class CsvTable {
  public:
   CsvTable(std::filesystem::path path, std::vector<std::string> columns);
-  /// One value per column; numbers are written with `%.17g`, strings as given (quoted if needed).
+  /// One value per column; numbers are written as the shortest text that reads back exactly,
+  /// strings as given (quoted if needed).
   void append(const std::vector<std::variant<double, long long, std::string>>& row);
   const std::filesystem::path& path() const { return path_; }
 

@@ -25,7 +25,7 @@ struct TrustRegionStatistics {
 struct RmtrLevelStatistics {
   PetscInt dofs = 0;
   long successful = 0;  ///< π^l of eq. (7.2): accepted steps that survived to the finest level
-  long assemblies = 0;  ///< gradient-and-Hessian assemblies (Q^l of eq. 7.3)
+  long assemblies = 0;  ///< Hessian assemblies (Q^l of eq. 7.3; only where a QP needed one)
   long qp_solves = 0;
   long objectives = 0;       ///< trial-point evaluations
   long coarse_accepted = 0;  ///< prolongated coarse corrections accepted on this level

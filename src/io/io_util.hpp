@@ -18,7 +18,7 @@ void create_parent_folder(const std::filesystem::path& path);
 /// Renames the complete temporary `tmp` over `path`; on failure removes `tmp` and throws.
 void commit_temporary(const std::filesystem::path& tmp, const std::filesystem::path& path);
 
-/// `%.17g`: enough digits that every double reads back bit-exactly.
+/// The shortest text that reads back as the same double, bit-exactly (std::to_chars).
 std::string format_double(double x);
 
 /// Checks the shape invariants of a SurfaceSample (3 coordinates per point, 4 in-range indices

@@ -54,8 +54,8 @@ void append_double(std::string& out, double d) {
     return;
   }
   std::string s = io_detail::format_double(d);
-  // "%.17g" prints 2.0 as "2"; append ".0" so readers that distinguish integers from floats
-  // (Python's json) give back a float.
+  // The shortest round-trip text of 2.0 is "2"; append ".0" so readers that distinguish
+  // integers from floats (Python's json) give back a float.
   if (s.find_first_of(".eE") == std::string::npos) s += ".0";
   out += s;
 }

@@ -1,5 +1,5 @@
 // Number formatting and input checks shared by the text writers (OBJ, XDMF, CSV, JSON).
-#include <cstdio>
+#include <charconv>
 #include <stdexcept>
 
 #include "io_util.hpp"
@@ -7,11 +7,12 @@
 namespace mlshell::io_detail {
 
 std::string format_double(double x) {
-  // 17 significant digits round-trip every IEEE double; 32 chars hold the longest output
+  // The shortest text that reads back as the same double (std::to_chars, no format given),
+  // e.g. 0.1 rather than %.17g's 0.10000000000000001; 32 chars hold the longest output
   // ("-2.2250738585072014e-308" is 24).
   char buf[32];
-  const int n = std::snprintf(buf, sizeof buf, "%.17g", x);
-  return std::string(buf, static_cast<std::size_t>(n));
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
 }
 
 void check_surface(const SurfaceSample& s, const char* who) {

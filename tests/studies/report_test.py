@@ -16,6 +16,7 @@ from context import Context, read_csv  # noqa: E402
 from plots import pareto_front  # noqa: E402
 from runner import parse_log_view, solver_fields  # noqa: E402
 from study_accuracy import l2_distance  # noqa: E402
+from study_scaling import too_big  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from quick_outputs import failed_runs  # noqa: E402
@@ -31,6 +32,18 @@ def unit_square_elements(n, displacement):
                     p = ((i + di) / n, (j + dj) / n, 0.0)
                     rows.append((p, displacement(p)))
     return rows
+
+
+class ScalingMemoryGuard(unittest.TestCase):
+    def test_factorising_solvers_are_not_started_beyond_the_memory(self):
+        # TR peaked at 3,621 MiB per rank at 201,243 dofs: 6× on 2 ranks is 42 GiB.
+        why = too_big("tr", "3621", 2, 22000.0)
+        self.assertIsNotNone(why)
+        self.assertIn("predicted 42 GiB on 2 ranks > 21 GiB available", why)
+        # The patch smoother (2,076 MiB, grows ~4×) fits; so does anything with no history.
+        self.assertIsNone(too_big("rmtr-patch", "2076", 2, 22000.0))
+        self.assertIsNone(too_big("tr", "", 2, 22000.0))
+        self.assertIsNone(too_big("tr", "3621", 2, None))
 
 
 class L2Distance(unittest.TestCase):

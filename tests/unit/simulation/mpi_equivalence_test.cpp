@@ -190,3 +190,13 @@ TEST(MpiEquivalence, PatchSmoothedRmtrReachesTheSameStateOnOneAndTwoRanks) {
   expect_same_trampoline_state(
       2, 1, {{"-tao_rmtr_smoother_qp", "stcg"}, {"-tao_rmtr_smoother_pc", "vpatch"}}, "vpatch");
 }
+
+// The full-multigrid start of petsc-options/rmtr-patch.yaml: every coarser level's own problem
+// solved on the distributed levels, then the prolongated start on the finest.
+TEST(MpiEquivalence, FullMultigridStartReachesTheSameStateOnOneAndTwoRanks) {
+  expect_same_trampoline_state(2, 1,
+                               {{"-tao_rmtr_smoother_qp", "stcg"},
+                                {"-tao_rmtr_smoother_pc", "vpatch"},
+                                {"-tao_rmtr_fmg_cycles", "1"}},
+                               "fmg");
+}
