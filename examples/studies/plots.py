@@ -138,8 +138,9 @@ def parallel(rows, out):
     ok = [r for r in rows if number(r["stage_solve"]) is not None]
     if not ok:
         return None
-    fig, ax = plt.subplots(figsize=(7, 4))
-    labels = [f"{r['scene']} {r['dofs']}\n{r['ranks']} rank(s)" for r in ok]
+    fig, ax = plt.subplots(figsize=(max(7, 1.4 * len(ok)), 4))
+    labels = [f"{r['scene']} {r['dofs']}\n{r.get('solver', 'rmtr')}, {r['ranks']} rank(s)"
+              for r in ok]
     bottom = [0.0] * len(ok)
     for stage in ("setup", "solve", "output"):
         values = [number(r[f"stage_{stage}"], 0.0) for r in ok]

@@ -333,53 +333,68 @@ class Report:
                         "time / RMTR"], body))
         self.image(plots.peers(rows, self.out))
 
-    def time_split(self, scene, dofs, ranks=2):
-        """Where an RMTR solve's time goes, from the parallel study's -log_view (if it ran)."""
-        rows, events = self.csv("parallel") or [], self.csv("parallel_events") or []
-        r = find(rows, scene=scene, dofs=dofs, ranks=ranks)
+    def with_solver(self, name):
+        """The rows of CSV `name`, each with a solver (tables written before the parallel
+        study compared solvers hold the default's rows)."""
+        rows = self.csv(name)
+        if rows is not None:
+            for r in rows:
+                r["solver"] = r.get("solver") or "rmtr"
+        return rows
+
+    def time_split(self, scene, dofs, ranks=2, solver="rmtr"):
+        """Where a solve's time goes, from the parallel study's -log_view (if it ran)."""
+        rows = self.with_solver("parallel") or []
+        events = self.with_solver("parallel_events") or []
+        r = find(rows, scene=scene, dofs=dofs, ranks=ranks, solver=solver)
         if not r or number(r["stage_solve"]) is None:
             return ""
         top = [e for e in events if e["scene"] == scene and e["ranks"] == str(ranks)
-               and e["refine"] == r["refine"]][:4]
-        split = (f"; RMTR on {ranks} ranks: Setup {seconds(r['stage_setup']) or '?'} s, Solve "
+               and e["refine"] == r["refine"] and e["solver"] == solver][:4]
+        who = "RMTR" if solver == "rmtr" else solver
+        split = (f"; {who} on {ranks} ranks: Setup {seconds(r['stage_setup']) or '?'} s, Solve "
                  f"{seconds(r['stage_solve'])} s")
         return split + (" (" + ", ".join(f"{e['event']} {seconds(e['time'])} s" for e in top) +
                         ")" if top else "")
 
     # --- parallel ---------------------------------------------------------------------------
     def parallel(self):
-        rows = self.csv("parallel")
+        rows = self.with_solver("parallel")
         if rows is None:
             return
         body = []
-        for scene, dofs in dict.fromkeys((r["scene"], r["dofs"]) for r in rows):
-            one, two = find(rows, scene=scene, dofs=dofs, ranks=1), find(
-                rows, scene=scene, dofs=dofs, ranks=2)
+        for scene, dofs, solver in dict.fromkeys((r["scene"], r["dofs"], r["solver"])
+                                                 for r in rows):
+            one, two = (find(rows, scene=scene, dofs=dofs, solver=solver, ranks=n)
+                        for n in (1, 2))
             for r in (one, two):
                 if r:
-                    body.append([scene, count(dofs), r["ranks"], seconds(r["wall_time"]),
+                    body.append([scene, solver, count(dofs), r["ranks"], seconds(r["wall_time"]),
                                  seconds(r["stage_setup"]), seconds(r["stage_solve"]),
                                  seconds(r["stage_output"]), outcome(r)])
             if one and two and number(one["wall_time"]) and number(two["wall_time"]):
                 s = number(one["wall_time"]) / number(two["wall_time"])
-                self.headline.append(("2-rank speedup (wall)", f"{scene}, {count(dofs)} dofs",
-                                      f"{s:.2f}"))
+                self.headline.append(("2-rank speedup (wall)",
+                                      f"{scene}, {count(dofs)} dofs, {solver}", f"{s:.2f}"))
                 if int(dofs or 0) == GOAL_DOFS:
                     ok = s >= GOAL_SPEEDUP_RANKS
                     self.goals.append((f"2 ranks ≥ {GOAL_SPEEDUP_RANKS}× faster than 1 at "
-                                       f"{GOAL_DOFS:,} dofs ({scene})",
-                                       f"{s:.2f}×" + ("" if ok else self.time_split(scene, dofs)),
+                                       f"{GOAL_DOFS:,} dofs ({scene}, {solver})",
+                                       f"{s:.2f}×" + ("" if ok else
+                                                      self.time_split(scene, dofs,
+                                                                      solver=solver)),
                                        ok))
-        self.add("## Parallel: 1 vs 2 ranks\n\nRMTR, one step of dt = 1; times in seconds by "
-                 "`-log_view` stage.\n\n" + table(
-                     ["scene", "dofs", "ranks", "wall", "Setup", "Solve", "Output", "V-cycles"],
-                     body))
-        events = self.csv("parallel_events")
+        self.add("## Parallel: 1 vs 2 ranks\n\nOne step of dt = 1; times in seconds by "
+                 "`-log_view` stage. `rmtr`: Dogleg smoothing (the default); `rmtr-patch`: "
+                 "full-multigrid start and vertex-patch smoothing.\n\n" + table(
+                     ["scene", "solver", "dofs", "ranks", "wall", "Setup", "Solve", "Output",
+                      "V-cycles"], body))
+        events = self.with_solver("parallel_events")
         if events:
-            body = [[e["scene"], e["refine"], e["ranks"], e["event"], seconds(e["time"])]
-                    for e in events]
+            body = [[e["scene"], e["solver"], e["refine"], e["ranks"], e["event"],
+                     seconds(e["time"])] for e in events]
             self.add("Costliest events of the Solve stage (max over ranks):\n\n" + table(
-                ["scene", "refine", "ranks", "event", "time [s]"], body))
+                ["scene", "solver", "refine", "ranks", "event", "time [s]"], body))
         self.image(plots.parallel(rows, self.out))
 
     # --- scaling (issue 13) ------------------------------------------------------------------

@@ -157,12 +157,19 @@ class ReportFromKnownRows(unittest.TestCase):
             run_row("trampoline", 51483, 9, 0, solver="bnls-mumps", wall_time=5.0)])
         write(self.out, "parallel", [
             run_row("trampoline", 51483, 5, refine=5, ranks=1, wall_time=20.0, stage_solve=18.0),
-            run_row("trampoline", 51483, 5, refine=5, ranks=2, wall_time=16.0, stage_solve=14.0)])
+            run_row("trampoline", 51483, 5, refine=5, ranks=2, wall_time=16.0, stage_solve=14.0),
+            run_row("trampoline", 51483, 1, refine=5, ranks=1, wall_time=19.0, stage_solve=9.0,
+                    solver="rmtr-patch"),
+            run_row("trampoline", 51483, 1, refine=5, ranks=2, wall_time=10.0, stage_solve=4.5,
+                    solver="rmtr-patch")])
         text = self.build()
         self.assertIn("| 4.00 |", text)  # bntr-gamg: 40 s / 10 s
         self.assertIn("bntr-gamg takes 4.00× RMTR's time", text)  # the failed bnls is not "best"
         self.assertIn("| 4.00× | met |", text)
         self.assertRegex(text, r"\| 1\.25×; RMTR on 2 ranks: [^|]*Solve 14 s \| \*\*not met\*\* \|")
+        # Rows without a solver are the default's; each configuration has its own goal row.
+        self.assertIn("| trampoline | rmtr | 51,483 | 1 | 20 |", text)
+        self.assertIn("(trampoline, rmtr-patch) | 1.90× | met |", text)
 
     def test_scaling_table_ratios_and_goals(self):
         write(self.out, "scaling", [
