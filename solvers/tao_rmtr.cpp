@@ -316,11 +316,13 @@ PetscErrorCode keep_lower(Objective& f, Vec candidate, PetscReal f_current, Vec 
 /// V-cycles on the level's own problem h^l = f^l (δg = 0), started from the coarser level's
 /// solution prolongated where that is lower in f^l than the projected fine iterate (eq. 4.6);
 /// finally the finest iterate becomes the prolongated solution of level L − 1 if that lowers
-/// f^L below `f_fine`, its value at the given iterate. The energy never rises.
-PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine) {
+/// f^L below `f_fine`, its value at the given iterate (*moved says whether). The energy never
+/// rises.
+PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine, bool* moved) {
   const int L = finest(c);
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(tao));
   PetscFunctionBeginUser;
+  *moved = false;
   for (int l = L; l > 0; --l)
     PetscCall(project(c, l, l == L ? tao->solution : c.levels[l].x0, c.levels[l - 1].x0));
   std::vector<long> successful(c.levels.size(), 0);
@@ -351,13 +353,12 @@ PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine) {
   }
   Level& top = c.levels[L];
   PetscCall(transfer(c, L).prolong(c.levels[L - 1].tr->solution(), top.trial));
-  bool taken;
-  PetscCall(keep_lower(*top.objective, top.trial, f_fine, tao->solution, &taken));
-  if (taken)  // the coarse steps now live on in the finest iterate
+  PetscCall(keep_lower(*top.objective, top.trial, f_fine, tao->solution, moved));
+  if (*moved)  // the coarse steps now live on in the finest iterate
     for (int l = 0; l < L; ++l) c.stats.levels[l].successful += successful[l];
   if (c.monitor)
     PetscCall(PetscPrintf(comm, "  rmtr fmg: the finest level starts from %s\n",
-                          taken ? "the prolongated solution" : "its own iterate (lower energy)"));
+                          *moved ? "the prolongated solution" : "its own iterate (lower energy)"));
   PetscFunctionReturn(0);
 }
 
@@ -404,13 +405,17 @@ PetscErrorCode solve(Tao tao) {
   // relative to ‖g₀‖ and the energy history refer to it.
   PetscReal f_in = 0.0, g0 = 0.0;
   const bool fmg = c->fmg_cycles > 0 && L > 0;
+  bool moved = false;
   if (fmg) {
     PetscCall(top.objective->objective(tao->solution, &f_in, tao->gradient));
     PetscCall(VecNorm(tao->gradient, NORM_2, &g0));
     if (std::isfinite(f_in) && std::isfinite(g0) && g0 > tao->gatol)
-      PetscCall(fmg_start(tao, *c, f_in));
+      PetscCall(fmg_start(tao, *c, f_in, &moved));
   }
-  PetscCall(top.tr->start(tao->solution));
+  if (fmg && !moved)  // f and ∇f at the given iterate are known
+    PetscCall(top.tr->start(tao->solution, &f_in, tao->gradient));
+  else
+    PetscCall(top.tr->start(tao->solution));
   PetscReal delta = c->delta0;
   if (!fmg) {
     f_in = top.tr->value();
@@ -426,7 +431,7 @@ PetscErrorCode solve(Tao tao) {
   PetscCall(TaoLogConvergenceHistory(tao, f_in, g0, 0.0, tao->ksp_its));
   PetscCall(TaoMonitor(tao, tao->niter, f_in, g0, 0.0, delta));
   PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
-  if (tao->reason != TAO_CONTINUE_ITERATING && fmg) {  // converged at the moved iterate
+  if (tao->reason != TAO_CONTINUE_ITERATING && moved) {  // stopped at the moved iterate
     PetscCall(VecCopy(top.tr->gradient(), tao->gradient));
     tao->fc = top.tr->value();
     tao->residual = top.tr->gradient_norm();
