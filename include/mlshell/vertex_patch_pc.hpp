@@ -6,9 +6,9 @@
 //
 //   M⁻¹ r = Σ_i R_iᵀ |A_i|⁻¹ R_i r   (formula and positivity: vertex_patch_pc.cpp)
 //
-// Cost per setup: one dense factorisation of 3k × 3k per owned point (k = 9 control points of
-// a regular Catmull–Clark patch, 7 vertices of a regular triangle one-ring): linear in the
-// number of points, as is its memory (3k² doubles per point).
+// Cost per setup: one dense Cholesky factorisation of 3k × 3k per owned point (k = 9 control
+// points of a regular Catmull–Clark patch, 7 vertices of a regular triangle one-ring): linear in
+// the number of points, as is its memory (the packed factor, 3k(3k + 1)/2 doubles per point).
 #pragma once
 
 #include <petscpc.h>

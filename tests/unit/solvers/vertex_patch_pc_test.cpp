@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <petscksp.h>
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -21,18 +23,19 @@ using namespace mlshell;
 
 namespace {
 
-/// The trampoline's finest Hessian (refine 2, 1,083 dofs) at the start of its first step.
+/// The trampoline's finest Hessian (refine 2, 1,083 dofs) at the start of its first step, on
+/// the ranks of `comm`.
 struct TrampolineHessian {
   std::unique_ptr<SubdivisionHierarchy> sub;
   std::unique_ptr<LevelHierarchy> levels;
   std::unique_ptr<MultilevelProblem> problem;
   Mat H = nullptr;
   Vec u = nullptr, v = nullptr;
-  TrampolineHessian() {
+  explicit TrampolineHessian(MPI_Comm comm = PETSC_COMM_SELF) {
     Scene s = parse_scene(std::filesystem::path(MLSHELL_SOURCE_DIR) / "examples/trampoline.yaml");
     s.geometry.refine = 2;
     sub = std::make_unique<SubdivisionHierarchy>(build_cage(s.geometry), 2);
-    levels = std::make_unique<LevelHierarchy>(PETSC_COMM_SELF, *sub, 2, 3);
+    levels = std::make_unique<LevelHierarchy>(comm, *sub, 2, 3);
     problem = std::make_unique<MultilevelProblem>(s, *levels, CageFrame::from(s.geometry));
     levels->layout(0).create_vector(&u);
     VecDuplicate(u, &v);
@@ -81,7 +84,90 @@ Vec random_vector(Mat H, unsigned seed) {
   return x;
 }
 
+/// M⁻¹ r from the PC against Σ_i R_iᵀ |A_i|⁻¹ R_i r formed densely, patch by patch, from the
+/// whole matrix gathered on every rank (|A_i| by eigendecomposition, which is A_i for a positive
+/// definite patch), for the Hessian and for one shifted to negative eigenvalues.
+void expect_exact_patch_solves(MPI_Comm comm) {
+  ASSERT_EQ(register_vertex_patch_pc(), 0);
+  TrampolineHessian t(comm);
+  const VertexPatches* patches = nullptr;
+  ASSERT_EQ(vertex_patches_of(t.H, &patches), 0);
+  PetscInt n;
+  MatGetSize(t.H, &n, nullptr);
+  for (const double shift : {0.0, -1.0}) {
+    Mat A;
+    MatDuplicate(t.H, MAT_COPY_VALUES, &A);
+    ASSERT_EQ(attach_vertex_patches(A, t.levels->layout(0).vertex_patches()), 0);
+    MatShift(A, shift);
+    PC pc;
+    PCCreate(comm, &pc);
+    PCSetType(pc, "vpatch");
+    PCSetOperators(pc, A, A);
+    ASSERT_EQ(PCSetUp(pc), 0);
+    Vec r = random_vector(A, 5), z;
+    VecDuplicate(r, &z);
+    PCApply(pc, r, z);
+    // Everything on every rank: A, r and the PC's z.
+    IS all;
+    ISCreateStride(PETSC_COMM_SELF, n, 0, 1, &all);
+    Mat* whole;
+    MatCreateSubMatrices(A, 1, &all, &all, MAT_INITIAL_MATRIX, &whole);
+    std::vector<double> r_all(n), z_all(n), z_ref(n, 0.0);
+    for (auto [v, out] : {std::pair{r, &r_all}, std::pair{z, &z_all}}) {
+      VecScatter to_all;
+      Vec seq;
+      VecScatterCreateToAll(v, &to_all, &seq);
+      VecScatterBegin(to_all, v, seq, INSERT_VALUES, SCATTER_FORWARD);
+      VecScatterEnd(to_all, v, seq, INSERT_VALUES, SCATTER_FORWARD);
+      const PetscScalar* a;
+      VecGetArrayRead(seq, &a);
+      out->assign(a, a + n);
+      VecRestoreArrayRead(seq, &a);
+      VecScatterDestroy(&to_all);
+      VecDestroy(&seq);
+    }
+    for (const auto& patch : patches->patches) {
+      std::vector<PetscInt> idx;
+      for (int q : patch)
+        for (int c = 0; c < 3; ++c) idx.push_back(3 * patches->blocks[q] + c);
+      const int m = static_cast<int>(idx.size());
+      Eigen::MatrixXd Ai(m, m);  // MatGetValues is row-major; Ai is symmetric but for round-off
+      MatGetValues(whole[0], m, idx.data(), m, idx.data(), Ai.data());
+      Ai = (0.5 * (Ai + Ai.transpose())).eval();
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Ai);
+      Eigen::VectorXd lambda = es.eigenvalues().cwiseAbs();
+      const double floor = 1e-12 * lambda.maxCoeff();
+      for (int k = 0; k < m; ++k) lambda[k] = 1.0 / std::max(lambda[k], floor);
+      Eigen::VectorXd ri(m);
+      for (int k = 0; k < m; ++k) ri[k] = r_all[idx[k]];
+      const Eigen::VectorXd zi =
+          es.eigenvectors() * lambda.asDiagonal() * (es.eigenvectors().transpose() * ri);
+      for (int k = 0; k < m; ++k) z_ref[idx[k]] += zi[k];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, z_ref.data(), static_cast<int>(n), MPI_DOUBLE, MPI_SUM, comm);
+    double diff = 0.0, norm = 0.0;
+    for (PetscInt k = 0; k < n; ++k) {
+      diff = std::max(diff, std::abs(z_all[k] - z_ref[k]));
+      norm = std::max(norm, std::abs(z_ref[k]));
+    }
+    EXPECT_GT(norm, 0.0);
+    EXPECT_LE(diff, 1e-9 * norm) << "shift " << shift << ": max |z - z_ref| " << diff
+                                 << " against max |z_ref| " << norm;
+    MatDestroySubMatrices(1, &whole);
+    ISDestroy(&all);
+    VecDestroy(&r);
+    VecDestroy(&z);
+    PCDestroy(&pc);
+    MatDestroy(&A);
+  }
+}
+
 }  // namespace
+
+TEST(VertexPatchPc, AppliesTheExactPatchSolves) { expect_exact_patch_solves(PETSC_COMM_SELF); }
+
+// Two ranks: the patches of points next to the other rank's take rows of its matrix part.
+TEST(MpiVertexPatchPc, AppliesTheExactPatchSolves) { expect_exact_patch_solves(PETSC_COMM_WORLD); }
 
 TEST(VertexPatches, ControlPointsTakeTheirThreeByThreeBlock) {
   TrampolineHessian t;
