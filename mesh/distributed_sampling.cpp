@@ -1,6 +1,10 @@
 // Sampling distributed displacements for parallel frame output (see distributed_sampling.hpp).
 #include "mlshell/distributed_sampling.hpp"
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 namespace mlshell {
 
 namespace {
@@ -23,28 +27,33 @@ DistributedSampling::DistributedSampling(const SurfaceSampling& sampling,
   PetscInt first, last;
   slice_of(comm_, static_cast<PetscInt>(sampling.num_points()), &first, &last);
   const PetscInt rows = last - first, owned = layout.num_owned_points();
-  const PetscInt owned_begin = layout.first_owned(), owned_end = owned_begin + owned;
   const auto& offsets = sampling.offsets();
   const auto& nodes = sampling.nodes();
   const auto& w = sampling.weights();
-  std::vector<PetscInt> dnnz(rows, 0), onnz(rows, 0);
-  for (PetscInt s = first; s < last; ++s)
-    for (std::int64_t k = offsets[s]; k < offsets[s + 1]; ++k) {
-      const PetscInt col = layout.petsc_of(nodes[k]);
-      (col >= owned_begin && col < owned_end ? dnnz : onnz)[s - first]++;
+  // This rank's rows of W as CSR (columns sorted, repeated nodes merged), handed over whole.
+  std::vector<PetscInt> ia(rows + 1, 0), ja;
+  std::vector<PetscScalar> va;
+  std::vector<std::pair<PetscInt, double>> row;
+  for (PetscInt s = first; s < last; ++s) {
+    row.clear();
+    for (std::int64_t k = offsets[s]; k < offsets[s + 1]; ++k)
+      row.emplace_back(layout.petsc_of(nodes[k]), w[k]);
+    std::sort(row.begin(), row.end());
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      if (k > 0 && row[k].first == row[k - 1].first) {
+        va.back() += row[k].second;
+        continue;
+      }
+      ja.push_back(row[k].first);
+      va.push_back(row[k].second);
     }
+    ia[s - first + 1] = static_cast<PetscInt>(ja.size());
+  }
   PetscCallAbort(comm_, MatCreate(comm_, &weights_));
   PetscCallAbort(comm_, MatSetSizes(weights_, rows, owned, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCallAbort(comm_, MatSetType(weights_, MATAIJ));
-  PetscCallAbort(comm_,
-                 MatXAIJSetPreallocation(weights_, 1, dnnz.data(), onnz.data(), nullptr, nullptr));
-  for (PetscInt s = first; s < last; ++s)
-    for (std::int64_t k = offsets[s]; k < offsets[s + 1]; ++k) {
-      const PetscInt col = layout.petsc_of(nodes[k]);
-      PetscCallAbort(comm_, MatSetValue(weights_, s, col, w[k], ADD_VALUES));
-    }
-  PetscCallAbort(comm_, MatAssemblyBegin(weights_, MAT_FINAL_ASSEMBLY));
-  PetscCallAbort(comm_, MatAssemblyEnd(weights_, MAT_FINAL_ASSEMBLY));
+  PetscCallAbort(comm_, MatSeqAIJSetPreallocationCSR(weights_, ia.data(), ja.data(), va.data()));
+  PetscCallAbort(comm_, MatMPIAIJSetPreallocationCSR(weights_, ia.data(), ja.data(), va.data()));
   PetscCallAbort(comm_, MatCreateMAIJ(weights_, 3, &components_));
 
   PetscCallAbort(comm_, VecCreate(comm_, &reference_));

@@ -225,8 +225,9 @@ PetscErrorCode setup(PC pc) {
         }
       }
     for (int a = 0; a < k; ++a) p->slot[p->position[patch[a]]] = -1;
-    // The patch matrix is symmetric up to round-off: symmetrise.
-    D = (0.5 * (D + D.transpose())).eval();
+    // The patch matrix is symmetric up to round-off: symmetrise (in place, no temporary).
+    for (int j = 0; j < m; ++j)
+      for (int r = j + 1; r < m; ++r) D(r, j) = D(j, r) = 0.5 * (D(r, j) + D(j, r));
     const int kind = factor_patch(D, p->factor.get() + p->offset[i]);
     if (kind >= 0) {
       work.resize(static_cast<std::size_t>(m) * m);

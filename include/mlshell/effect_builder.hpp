@@ -20,19 +20,26 @@ namespace mlshell {
 /// hierarchy must use the finest level's h, or the coarse levels minimise a different
 /// functional (β_l = h_l^-σ is 2^σ = 32 times softer per level for σ = 5) and RMTR's coarse
 /// corrections, which then slide along the boundary, are rejected by the fine level.
+///
+/// `scale` (PenaltyScale), null for disc's own, is for the same reason the finest level's on
+/// every level.
+struct PenaltyScale;
 std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
                                                   const SubdivisionDiscretization& disc,
                                                   const ParallelLayout& layout,
                                                   const CageFrame& frame,
-                                                  double penalty_mesh_size = 0.0);
+                                                  double penalty_mesh_size = 0.0,
+                                                  const PenaltyScale* scale = nullptr);
 
 /// The scales that make the default penalty dimensionally consistent: the membrane stiffness
 /// Y·τ of the material (N/m; Y = max(k1, k3) for the woven cloth, E/(1 − ν²) for St.
 /// Venant–Kirchhoff) and the size L of the reference surface (m; the largest side of its
-/// bounding box).
+/// bounding box, over the corners of the elements; each rank evaluates those of the elements it
+/// owns).
 struct PenaltyScale {
   double membrane_stiffness = 0.0, length = 0.0;
-  static PenaltyScale of(const MaterialSpec& material, const SubdivisionDiscretization& disc);
+  static PenaltyScale of(const MaterialSpec& material, const SubdivisionDiscretization& disc,
+                         const ParallelLayout& layout);
   /// Yτ of any material model.
   static double membrane_stiffness_of(const MaterialSpec& material);
 };

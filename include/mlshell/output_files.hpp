@@ -37,11 +37,6 @@ struct MaterialSpec;
 /// psi, s11, s22, s12, beyond_fit, coupling_limited.
 void write_material_table(const MaterialSpec& spec, const std::filesystem::path& path);
 
-/// Wavefront OBJ of a sampled surface (v and f lines, 1-based indices, coordinates as the
-/// shortest text that reads back exactly).
-void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
-               const std::string& comment);
-
 /// One frame's datasets as PETSc objects on a series' communicator, each rank holding a
 /// contiguous slice in natural order: geometry (and displacement) of block size 3, topology of
 /// block size cell_size, and scalar cell fields (block size 1, named "cell_<name>").
@@ -52,6 +47,16 @@ struct FrameData {
   int cell_size = 4;
   std::vector<std::pair<std::string, Vec>> cell_fields;
 };
+
+/// Wavefront OBJ of a sampled surface (v and f lines, 1-based indices, coordinates as the
+/// shortest text that reads back exactly).
+void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
+               const std::string& comment);
+/// The same file from a frame distributed over `comm` (its geometry and topology): every rank
+/// formats its slice's lines, rank 0 writes the file; an error there is thrown on every rank.
+void write_obj(MPI_Comm comm, const std::filesystem::path& path, const FrameData& frame,
+               const std::string& comment);
+
 
 /// A time series for ParaView: one HDF5 file per frame (`<stem>_<step 6 digits>.h5` holding
 /// `/geometry` (N×3 float64), `/topology` (M×4 PetscInt, i.e. int32 or int64 as PETSc was built;

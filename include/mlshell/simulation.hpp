@@ -79,8 +79,9 @@ class Simulation {
   PetscErrorCode evaluate(int* status);
   PetscErrorCode step(int n, SolveReport& report);
   PetscErrorCode write_frame(int n, double t, bool force, bool converged);
-  PetscErrorCode write_xdmf_frame(
-      int n, double t, const std::vector<std::pair<std::string, std::vector<double>>>& fields);
+  PetscErrorCode write_frame_files(
+      int n, double t, bool xdmf, bool obj,
+      const std::vector<std::pair<std::string, std::vector<double>>>& fields);
   PetscErrorCode write_summary(const std::string& status, const SolveReport* last);
   PetscErrorCode estimate_condition();
   PetscErrorCode write_limit_csv();

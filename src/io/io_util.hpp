@@ -1,6 +1,9 @@
 // Helpers shared by the result-file writers (src/io/*.cpp); not part of the public interface.
 #pragma once
 
+#include <mpi.h>
+
+#include <exception>
 #include <filesystem>
 #include <string>
 
@@ -24,5 +27,29 @@ std::string format_double(double x);
 /// Checks the shape invariants of a SurfaceSample (3 coordinates per point, 4 in-range indices
 /// per quad, displacement empty or one vector per point); throws std::invalid_argument.
 void check_surface(const SurfaceSample& surface, const char* who);
+
+/// Rank 0's `text` on every rank.
+std::string broadcast(MPI_Comm comm, std::string text);
+
+/// Rank 0: every rank's `text` concatenated in rank order; other ranks: empty. Any length (sent
+/// in pieces below MPI's int counts).
+std::string gather_text(MPI_Comm comm, std::string text);
+
+/// Runs `f` on rank 0 and throws the same OutputError on every rank if it threw there, so
+/// that no rank goes on to a collective call the others have left.
+template <class F>
+void on_rank_zero(MPI_Comm comm, F&& f) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  if (rank == 0) try {
+      f();
+    } catch (const std::exception& e) {
+      error = e.what();
+      if (error.empty()) error = "unknown error";
+    }
+  error = broadcast(comm, std::move(error));
+  if (!error.empty()) throw OutputError(error);
+}
 
 }  // namespace mlshell::io_detail

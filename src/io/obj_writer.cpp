@@ -1,44 +1,104 @@
-// Wavefront OBJ output of a sampled surface, for quick looks in any mesh viewer.
+// Wavefront OBJ output of a sampled surface, for quick looks in any mesh viewer: from a whole
+// sample on one process, or from a frame distributed over the ranks (each formats its slice).
+#include <petscis.h>
+#include <petscvec.h>
+
 #include <sstream>
 
 #include "io_util.hpp"
 
 namespace mlshell {
 
-void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
-               const std::string& comment) {
-  io_detail::check_surface(surface, "write_obj");
+namespace {
+
+/// The comment, one `#` line per line (a multi-line comment cannot inject geometry
+/// statements), and a line with the counts.
+std::string obj_header(const std::string& comment, long long points, long long cells,
+                       int cell_size) {
   std::string out;
-  out.reserve(surface.points.size() * 24 + surface.cells.size() * 8 + comment.size() + 64);
-  // Every line of the comment becomes its own `#` line, so a multi-line comment cannot inject
-  // geometry statements.
   std::istringstream lines(comment);
   for (std::string line; std::getline(lines, line);) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     out += line.empty() ? "#\n" : "# " + line + "\n";
   }
-  out += "# " + std::to_string(surface.points.size() / 3) + " vertices, " +
-         std::to_string(surface.num_cells()) +
-         (surface.cell_size == 3 ? " triangles\n" : " quads\n");
-  for (std::size_t i = 0; i < surface.points.size(); i += 3) {
+  out += "# " + std::to_string(points) + " vertices, " + std::to_string(cells) +
+         (cell_size == 3 ? " triangles\n" : " quads\n");
+  return out;
+}
+
+/// `v x y z` lines of n points (3n coordinates).
+void append_vertices(std::string& out, const double* x, std::size_t n) {
+  out.reserve(out.size() + n * 60);
+  for (std::size_t i = 0; i < 3 * n; i += 3) {
     out += "v ";
-    out += io_detail::format_double(surface.points[i]);
+    out += io_detail::format_double(x[i]);
     out += ' ';
-    out += io_detail::format_double(surface.points[i + 1]);
+    out += io_detail::format_double(x[i + 1]);
     out += ' ';
-    out += io_detail::format_double(surface.points[i + 2]);
+    out += io_detail::format_double(x[i + 2]);
     out += '\n';
   }
-  const auto n = static_cast<std::size_t>(surface.cell_size);
-  for (std::size_t i = 0; i < surface.cells.size(); i += n) {
+}
+
+/// `f a b c [d]` lines of the cells in `c` (0-based point indices; OBJ's are 1-based).
+template <class Index>
+void append_faces(std::string& out, const Index* c, std::size_t values, int cell_size) {
+  out.reserve(out.size() + values * 8);
+  for (std::size_t i = 0; i < values; i += cell_size) {
     out += 'f';
-    for (std::size_t k = 0; k < n; ++k) {  // OBJ indices are 1-based
+    for (int k = 0; k < cell_size; ++k) {
       out += ' ';
-      out += std::to_string(surface.cells[i + k] + 1);
+      out += std::to_string(static_cast<long long>(c[i + k]) + 1);
     }
     out += '\n';
   }
+}
+
+void check(PetscErrorCode ierr, const std::filesystem::path& path, const char* call) {
+  if (ierr != 0)
+    throw OutputError("cannot write '" + path.string() + "': " + call + " failed (PETSc error " +
+                      std::to_string(static_cast<int>(ierr)) + ")");
+}
+
+}  // namespace
+
+void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
+               const std::string& comment) {
+  io_detail::check_surface(surface, "write_obj");
+  std::string out = obj_header(comment, static_cast<long long>(surface.points.size() / 3),
+                               static_cast<long long>(surface.num_cells()), surface.cell_size);
+  append_vertices(out, surface.points.data(), surface.points.size() / 3);
+  append_faces(out, surface.cells.data(), surface.cells.size(), surface.cell_size);
   write_file_atomic(path, out);
+}
+
+void write_obj(MPI_Comm comm, const std::filesystem::path& path, const FrameData& frame,
+               const std::string& comment) {
+  PetscInt points, cells, local_points, local_cells;
+  check(VecGetSize(frame.geometry, &points), path, "VecGetSize");
+  check(VecGetLocalSize(frame.geometry, &local_points), path, "VecGetLocalSize");
+  check(ISGetSize(frame.topology, &cells), path, "ISGetSize");
+  check(ISGetLocalSize(frame.topology, &local_cells), path, "ISGetLocalSize");
+  std::string vertices, faces;
+  const PetscScalar* x;
+  check(VecGetArrayRead(frame.geometry, &x), path, "VecGetArrayRead");
+  append_vertices(vertices, x, static_cast<std::size_t>(local_points / 3));
+  check(VecRestoreArrayRead(frame.geometry, &x), path, "VecRestoreArrayRead");
+  const PetscInt* c;
+  check(ISGetIndices(frame.topology, &c), path, "ISGetIndices");
+  append_faces(faces, c, static_cast<std::size_t>(local_cells), frame.cell_size);
+  check(ISRestoreIndices(frame.topology, &c), path, "ISRestoreIndices");
+  vertices = io_detail::gather_text(comm, std::move(vertices));
+  faces = io_detail::gather_text(comm, std::move(faces));
+  io_detail::on_rank_zero(comm, [&] {
+    std::string out = obj_header(comment, points / 3, cells / frame.cell_size, frame.cell_size);
+    out.reserve(out.size() + vertices.size() + faces.size());
+    out += vertices;
+    vertices = std::string();
+    out += faces;
+    faces = std::string();
+    write_file_atomic(path, out);
+  });
 }
 
 }  // namespace mlshell

@@ -1,6 +1,8 @@
 // Number formatting and input checks shared by the text writers (OBJ, XDMF, CSV, JSON).
+#include <algorithm>
 #include <charconv>
 #include <stdexcept>
+#include <vector>
 
 #include "io_util.hpp"
 
@@ -43,6 +45,45 @@ void check_surface(const SurfaceSample& s, const char* who) {
                                   " refers to point " + std::to_string(s.cells[i]) +
                                   " but there are " + std::to_string(npoints) + " points");
   }
+}
+
+}  // namespace mlshell::io_detail
+
+namespace mlshell::io_detail {
+
+std::string broadcast(MPI_Comm comm, std::string text) {
+  int length = static_cast<int>(text.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  text.resize(length);
+  MPI_Bcast(text.data(), length, MPI_CHAR, 0, comm);
+  return text;
+}
+
+std::string gather_text(MPI_Comm comm, std::string text) {
+  int rank, size;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  constexpr long long kPiece = 1LL << 30;
+  long long mine = static_cast<long long>(text.size());
+  std::vector<long long> lengths(size);
+  MPI_Gather(&mine, 1, MPI_LONG_LONG, lengths.data(), 1, MPI_LONG_LONG, 0, comm);
+  if (rank != 0) {
+    for (long long at = 0; at < mine; at += kPiece)
+      MPI_Send(text.data() + at, static_cast<int>(std::min(kPiece, mine - at)), MPI_CHAR, 0, 0,
+               comm);
+    return {};
+  }
+  long long total = 0;
+  for (long long n : lengths) total += n;
+  text.resize(static_cast<std::size_t>(total));
+  long long end = mine;
+  for (int r = 1; r < size; ++r) {
+    for (long long at = 0; at < lengths[r]; at += kPiece)
+      MPI_Recv(text.data() + end + at, static_cast<int>(std::min(kPiece, lengths[r] - at)),
+               MPI_CHAR, r, 0, comm, MPI_STATUS_IGNORE);
+    end += lengths[r];
+  }
+  return text;
 }
 
 }  // namespace mlshell::io_detail

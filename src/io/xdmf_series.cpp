@@ -73,40 +73,14 @@ Vec borrow_vector(const std::vector<double>& data, const char* name,
   return v;
 }
 
-/// Rank 0's `text` on every rank.
-std::string broadcast(MPI_Comm comm, std::string text) {
-  int length = static_cast<int>(text.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  text.resize(length);
-  MPI_Bcast(text.data(), length, MPI_CHAR, 0, comm);
-  return text;
-}
-
-/// Runs `f` on rank 0 and throws the same OutputError on every rank if it threw there, so
-/// that no rank goes on to a collective call the others have left.
-template <class F>
-void on_rank_zero(MPI_Comm comm, F&& f) {
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  std::string error;
-  if (rank == 0) try {
-      f();
-    } catch (const std::exception& e) {
-      error = e.what();
-      if (error.empty()) error = "unknown error";
-    }
-  error = broadcast(comm, std::move(error));
-  if (!error.empty()) throw OutputError(error);
-}
-
 void write_frame_h5(MPI_Comm comm, const std::filesystem::path& file, const FrameData& frame) {
   std::filesystem::path tmp;
-  on_rank_zero(comm, [&] {
+  io_detail::on_rank_zero(comm, [&] {
     io_detail::create_parent_folder(file);
     tmp = io_detail::temporary_path_for(file);
   });
   // Every rank opens rank 0's temporary name.
-  tmp = broadcast(comm, tmp.string());
+  tmp = io_detail::broadcast(comm, tmp.string());
   PetscViewer viewer = nullptr;
   try {
     check_petsc(PetscViewerCreate(comm, &viewer), file, "PetscViewerCreate");
@@ -128,7 +102,7 @@ void write_frame_h5(MPI_Comm comm, const std::filesystem::path& file, const Fram
     std::filesystem::remove(tmp, ignored);
     throw;
   }
-  on_rank_zero(comm, [&] { io_detail::commit_temporary(tmp, file); });
+  io_detail::on_rank_zero(comm, [&] { io_detail::commit_temporary(tmp, file); });
 }
 
 // Escapes the characters with a meaning in XML text and attribute values.
@@ -237,7 +211,7 @@ void XdmfSeries::add_frame(int step, double time, const FrameData& frame) {
     *same = f;
   else
     frames_.push_back(f);
-  on_rank_zero(comm_, [&] { write_xdmf(); });
+  io_detail::on_rank_zero(comm_, [&] { write_xdmf(); });
 }
 
 void XdmfSeries::write_xdmf() const {

@@ -89,7 +89,8 @@ output:                      optional
   dir: path                  default out
   every: int                 write frames every N steps, >= 1 (default 1; the last step always)
   formats: [xdmf, obj, csv]  subset without repeats (default all three)
-  samples_per_face: int      limit-surface samples per face and direction, 1..16 (default 4)
+  samples_per_face: int      limit-surface samples per face and direction, 1..16 (default:
+                             4 up to refine 2, 2 at refine 3, 1 beyond)
   checkpoint_every: int      steps between checkpoints, >= 0 (default 0: none)
 solver:                      optional
   options_file: path         PETSc options file; the command line overrides it

@@ -21,20 +21,25 @@ double PenaltyScale::membrane_stiffness_of(const MaterialSpec& material) {
   return Y * material.thickness;
 }
 
-PenaltyScale PenaltyScale::of(const MaterialSpec& material, const SubdivisionDiscretization& disc) {
+PenaltyScale PenaltyScale::of(const MaterialSpec& material, const SubdivisionDiscretization& disc,
+                              const ParallelLayout& layout) {
   PenaltyScale s;
   s.membrane_stiffness = membrane_stiffness_of(material);
-  // The reference limit surface at the corners of every element (ghost faces are not elements).
+  // The reference limit surface at the corners of every element (ghost faces are not elements),
+  // each rank the elements it owns.
   std::vector<SurfacePoint> corners;
   for (int f : disc.elements())
-    for (double u : {0.0, 1.0})
-      for (double v : {0.0, 1.0}) corners.push_back({f, u, v});
+    if (layout.face_owner(f) == layout.rank())
+      for (double u : {0.0, 1.0})
+        for (double v : {0.0, 1.0}) corners.push_back({f, u, v});
   Point3 lo = Point3::Constant(INFINITY), hi = Point3::Constant(-INFINITY);
   for (const PointBasis& b : disc.evaluator().evaluate(corners)) {
     const Point3 x = b.apply(kValue, disc.mesh().points);
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
   }
+  MPI_Allreduce(MPI_IN_PLACE, lo.data(), 3, MPI_DOUBLE, MPI_MIN, layout.comm());
+  MPI_Allreduce(MPI_IN_PLACE, hi.data(), 3, MPI_DOUBLE, MPI_MAX, layout.comm());
   s.length = (hi - lo).maxCoeff();
   return s;
 }
@@ -183,12 +188,14 @@ std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
                                                   const SubdivisionDiscretization& disc,
                                                   const ParallelLayout& layout,
                                                   const CageFrame& frame,
-                                                  double penalty_mesh_size) {
+                                                  double penalty_mesh_size,
+                                                  const PenaltyScale* penalty_scale) {
   auto problem = std::make_unique<LevelProblem>(layout);
   problem->add_term(std::make_unique<ShellElasticTerm>(disc, layout, scene.material));
   const double ramp_time = scene.time.dt * scene.time.steps;
   const double h = penalty_mesh_size > 0.0 ? penalty_mesh_size : disc.mesh_size();
-  const PenaltyScale scale = PenaltyScale::of(scene.material, disc);
+  const PenaltyScale scale =
+      penalty_scale ? *penalty_scale : PenaltyScale::of(scene.material, disc, layout);
   const int nlocal = layout.num_local_points();
   if (scene.time.quasistatic())
     problem->add_term(std::make_unique<InertiaTerm>(disc, layout, scene.material.density,

@@ -8,10 +8,14 @@ namespace mlshell {
 
 MultilevelProblem::MultilevelProblem(const Scene& scene, const LevelHierarchy& levels,
                                      const CageFrame& frame)
-    : MultilevelProblem(levels, scene.time.dt, [&](int l) {
-        return build_level_problem(scene, levels.discretization(l), levels.layout(l), frame,
-                                   levels.discretization(levels.finest()).mesh_size());
-      }) {}
+    : MultilevelProblem(levels, scene.time.dt,
+                        [&, scale = PenaltyScale::of(scene.material,
+                                                     levels.discretization(levels.finest()),
+                                                     levels.layout(levels.finest()))](int l) {
+                          return build_level_problem(
+                              scene, levels.discretization(l), levels.layout(l), frame,
+                              levels.discretization(levels.finest()).mesh_size(), &scale);
+                        }) {}
 
 MultilevelProblem::MultilevelProblem(const Levels& levels, double dt, const LevelBuilder& build)
     : levels_(levels), dt_(dt) {

@@ -127,10 +127,12 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   output_ = std::make_unique<Output>();
   output_->dir = scene_.output.dir;
   for (const auto& t : problem_->terms()) output_->effect_names.push_back(t->name());
-  // Rank 0 samples the whole surface (OBJ frames); XDMF frames need it on every rank once.
+  // Frames (XDMF, OBJ) sample the surface with one matrix, each rank its slice of the samples.
   const auto& formats = scene_.output.formats;
-  if (rank_ == 0 || std::find(formats.begin(), formats.end(), "xdmf") != formats.end())
-    output_->sampler = disc_->sampling(scene_.output.samples_per_face);
+  if (std::find(formats.begin(), formats.end(), "xdmf") != formats.end() ||
+      std::find(formats.begin(), formats.end(), "obj") != formats.end())
+    output_->sampling = std::make_unique<DistributedSampling>(
+        *disc_->sampling(scene_.output.samples_for(scene_.geometry.refine)), *layout_);
   if (rank_ == 0) {
     fs::create_directories(output_->dir);
     // A summary left by an earlier run must not pass for this run's result.

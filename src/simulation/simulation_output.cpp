@@ -24,27 +24,17 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
   auto has = [&](const char* f) {
     return std::find(formats.begin(), formats.end(), f) != formats.end();
   };
-  std::vector<std::pair<std::string, std::vector<double>>> fields;
-  if (frame_due) PetscCall(problem_->face_fields(u_, disc_->num_faces(), fields));
-  if (frame_due && has("xdmf")) PetscCall(write_xdmf_frame(n, t, fields));
-  const bool checkpoint_due = converged && scene_.output.checkpoint_every > 0 && n > 0 &&
-                              n % scene_.output.checkpoint_every == 0;
-  if (!(frame_due && has("obj")) && !checkpoint_due) PetscFunctionReturn(0);
-  std::vector<double> u;
-  PetscCall(layout_->gather_natural(u_, u));
-  if (rank_ == 0 && frame_due && has("obj")) {
-    SurfaceSample s = output_->sampler->sample(u);
-    // Per-face fields go with samplings that have one cell per face (triangle meshes).
-    if (s.num_cells() == disc_->num_faces()) s.cell_data = std::move(fields);
-    char name[64];
-    std::snprintf(name, sizeof name, "frame_%06d.obj", n);
-    std::ostringstream c;
-    c << "mlshell " << scene_.name << " step " << n << " time " << t;
-    write_obj(output_->dir / name, s, c.str());
+  if (frame_due && (has("xdmf") || has("obj"))) {
+    std::vector<std::pair<std::string, std::vector<double>>> fields;
+    PetscCall(problem_->face_fields(u_, disc_->num_faces(), fields));
+    PetscCall(write_frame_files(n, t, has("xdmf"), has("obj"), fields));
   }
   // Only converged states are worth restarting from.
+  const bool checkpoint_due = converged && scene_.output.checkpoint_every > 0 && n > 0 &&
+                              n % scene_.output.checkpoint_every == 0;
   if (checkpoint_due) {
-    std::vector<double> v;
+    std::vector<double> u, v;
+    PetscCall(layout_->gather_natural(u_, u));
     PetscCall(layout_->gather_natural(v_, v));
     if (rank_ == 0) {
       char name[64];
@@ -56,23 +46,19 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
   PetscFunctionReturn(0);
 }
 
-// Every rank samples its slice of the surface and writes it: nothing is gathered.
-PetscErrorCode Simulation::write_xdmf_frame(
-    int n, double t, const std::vector<std::pair<std::string, std::vector<double>>>& fields) {
+// Every rank samples its slice of the surface and formats or writes it: nothing is gathered
+// but the OBJ text.
+PetscErrorCode Simulation::write_frame_files(
+    int n, double t, bool xdmf, bool obj,
+    const std::vector<std::pair<std::string, std::vector<double>>>& fields) {
   PetscFunctionBeginUser;
-  if (!output_->xdmf) {
-    output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name, comm_);
-    output_->distributed = std::make_unique<DistributedSampling>(*output_->sampler, *layout_);
-    // Only rank 0 samples the whole surface again (OBJ frames); the others keep their slice.
-    if (rank_ != 0) output_->sampler.reset();
-  }
   FrameData frame;
-  frame.cell_size = output_->distributed->cell_size();
-  PetscCall(output_->distributed->sample(u_, &frame.geometry, &frame.displacement));
-  PetscCall(output_->distributed->topology(&frame.topology));
+  frame.cell_size = output_->sampling->cell_size();
+  PetscCall(output_->sampling->sample(u_, &frame.geometry, &frame.displacement));
+  PetscCall(output_->sampling->topology(&frame.topology));
   // Per-face fields go with samplings that have one cell per face (triangle meshes); they are
-  // on rank 0 (LevelProblem::face_fields), which holds the whole dataset.
-  if (output_->distributed->num_cells() == disc_->num_faces())
+  // on rank 0 (LevelProblem::face_fields), which holds the whole dataset. OBJ has no cell data.
+  if (xdmf && output_->sampling->num_cells() == disc_->num_faces())
     for (const auto& [name, values] : fields) {
       Vec v;
       PetscCall(VecCreateMPIWithArray(comm_, 1, static_cast<PetscInt>(values.size()),
@@ -87,7 +73,18 @@ PetscErrorCode Simulation::write_xdmf_frame(
     for (auto& field : frame.cell_fields) VecDestroy(&field.second);
   };
   try {
-    output_->xdmf->add_frame(n, t, frame);
+    if (xdmf) {
+      if (!output_->xdmf)
+        output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name, comm_);
+      output_->xdmf->add_frame(n, t, frame);
+    }
+    if (obj) {
+      char name[64];
+      std::snprintf(name, sizeof name, "frame_%06d.obj", n);
+      std::ostringstream c;
+      c << "mlshell " << scene_.name << " step " << n << " time " << t;
+      write_obj(comm_, output_->dir / name, frame, c.str());
+    }
   } catch (...) {
     destroy();
     throw;

@@ -18,10 +18,8 @@ namespace mlshell {
 struct Simulation::Output {
   std::filesystem::path dir;
   std::unique_ptr<XdmfSeries> xdmf;
-  std::unique_ptr<DistributedSampling> distributed;  // the frames' sampling, on every rank
+  std::unique_ptr<DistributedSampling> sampling;  // the frames' surface, sliced over the ranks
   std::unique_ptr<CsvTable> csv;
-  // The whole sampling: on rank 0, and on the others until the distributed one is made from it.
-  std::unique_ptr<SurfaceSampling> sampler;
   std::vector<std::string> effect_names;
 };
 

@@ -250,9 +250,15 @@ TEST(PenaltyParameter, IsThePapersForItsDenimAndScalesWithStiffnessAndSize) {
 TEST(PenaltyParameter, ScaleIsReadFromTheMaterialAndTheSurface) {
   TestProblem tp("elastic_denim", PETSC_COMM_SELF);
   MaterialSpec m = denim();
-  const PenaltyScale s = PenaltyScale::of(m, *tp.disc);
+  const PenaltyScale s = PenaltyScale::of(m, *tp.disc, *tp.layout);
   EXPECT_NEAR(s.membrane_stiffness, 9.03e6 * 0.66e-3, 1e-9);
   EXPECT_NEAR(s.length, 1.0, 1e-12);  // the unit square's limit surface, ghosts excluded
-  const PenaltyScale v = PenaltyScale::of(svk(2e7, 0.5 * 0.6, 0.01), *tp.disc);
+  const PenaltyScale v = PenaltyScale::of(svk(2e7, 0.5 * 0.6, 0.01), *tp.disc, *tp.layout);
   EXPECT_NEAR(v.membrane_stiffness, 2e7 / (1 - 0.09) * 0.01, 1e-6);
+}
+
+// Each rank evaluates the corners of its own elements: the size is still the whole surface's.
+TEST(MpiPenaltyParameter, ScaleIsTheWholeSurfacesOnEveryRank) {
+  TestProblem tp("elastic_denim", PETSC_COMM_WORLD);
+  EXPECT_NEAR(PenaltyScale::of(denim(), *tp.disc, *tp.layout).length, 1.0, 1e-12);
 }

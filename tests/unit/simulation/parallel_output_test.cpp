@@ -1,5 +1,6 @@
-// Frames written in parallel (every rank its slice, DistributedSampling + XdmfSeries on the
-// world communicator) hold the datasets a serial writer gives for the same displacements.
+// Frames written in parallel (every rank its slice, DistributedSampling + XdmfSeries and the
+// OBJ writer on the world communicator) hold the datasets a serial writer gives for the same
+// displacements.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -57,6 +58,8 @@ TEST(MpiParallelOutput, FramesOnTwoRanksHoldTheSerialDatasets) {
   frame.cell_fields.emplace_back("strain", field_vec);
   XdmfSeries parallel(dir / "parallel", "shell", PETSC_COMM_WORLD);
   parallel.add_frame(3, 0.5, frame);
+  const std::string comment = "mlshell test\nsecond line";
+  write_obj(PETSC_COMM_WORLD, dir / "parallel" / "shell.obj", frame, comment);
   VecDestroy(&frame.geometry);
   VecDestroy(&frame.displacement);
   ISDestroy(&frame.topology);
@@ -88,6 +91,32 @@ TEST(MpiParallelOutput, FramesOnTwoRanksHoldTheSerialDatasets) {
     ta << xa.rdbuf();
     tb << xb.rdbuf();
     EXPECT_EQ(ta.str(), tb.str());
+    // The OBJ text: the same lines, coordinates equal to round-off.
+    write_obj(dir / "serial" / "shell.obj", serial, comment);
+    std::ifstream oa(dir / "parallel" / "shell.obj"), ob(dir / "serial" / "shell.obj");
+    std::string la, lb;
+    size_t lines = 0, vertices = 0, faces = 0;
+    while (std::getline(ob, lb)) {
+      ASSERT_TRUE(std::getline(oa, la)) << "the parallel OBJ ends at line " << lines;
+      ++lines;
+      if (lb.rfind("v ", 0) == 0) {
+        ++vertices;
+        std::istringstream sa(la.substr(1)), sb(lb.substr(1));
+        ASSERT_EQ(la.substr(0, 2), "v ");
+        for (int c = 0; c < 3; ++c) {
+          double xa, xb;
+          sa >> xa;
+          sb >> xb;
+          EXPECT_LE(std::abs(xa - xb), 1e-14 * extent) << "line " << lines;
+        }
+      } else {
+        faces += lb.rfind("f ", 0) == 0;
+        EXPECT_EQ(la, lb) << "line " << lines;
+      }
+    }
+    EXPECT_FALSE(std::getline(oa, la)) << "the parallel OBJ has more lines";
+    EXPECT_EQ(vertices, serial.points.size() / 3);
+    EXPECT_EQ(faces, static_cast<size_t>(serial.num_cells()));
     std::filesystem::remove_all(dir);
   }
   VecDestroy(&u);

@@ -134,7 +134,12 @@ TEST(SceneParse, MinimalSceneTakesEveryDefault) {
   EXPECT_EQ(scene.output.dir, fs::path("out"));
   EXPECT_EQ(scene.output.every, 1);
   EXPECT_EQ(scene.output.formats, (std::vector<std::string>{"xdmf", "obj", "csv"}));
-  EXPECT_EQ(scene.output.samples_per_face, 4);
+  EXPECT_EQ(scene.output.samples_per_face, 0);  // automatic: fewer per face on finer levels
+  EXPECT_EQ(scene.output.samples_for(0), 4);
+  EXPECT_EQ(scene.output.samples_for(2), 4);
+  EXPECT_EQ(scene.output.samples_for(3), 2);
+  EXPECT_EQ(scene.output.samples_for(4), 1);
+  EXPECT_EQ(scene.output.samples_for(8), 1);
   EXPECT_EQ(scene.output.checkpoint_every, 0);
   EXPECT_FALSE(scene.solver.options_file);
 }
@@ -227,6 +232,7 @@ TEST(SceneParse, FullRectangleSceneReadsEverySection) {
   EXPECT_EQ(scene.output.every, 2);
   EXPECT_EQ(scene.output.formats, (std::vector<std::string>{"xdmf", "csv"}));
   EXPECT_EQ(scene.output.samples_per_face, 3);
+  EXPECT_EQ(scene.output.samples_for(6), 3);  // given: at every refinement
   EXPECT_EQ(scene.output.checkpoint_every, 5);
 
   ASSERT_TRUE(scene.solver.options_file);
