@@ -8,9 +8,9 @@
 // Steihaug–Toint CG requires), indefinite Hessians of compressed cloth included.
 //
 // Each rank solves the patches of the points it owns. The patch matrices are read from the rows
-// of one sequential submatrix of A over the rank's local (owned + ghost) points, extracted with
-// MatCreateSubMatrices (off-rank rows included) and refreshed in place when A changes; on one
-// process A is that submatrix and is read directly. Each patch keeps L_i⁻¹ for the Cholesky
+// of A in place: an owned point's from the rank's diagonal and off-diagonal parts, a ghost
+// point's (owned by another rank) from a submatrix of those rows alone (MatCreateSubMatrices,
+// refreshed in place when A changes). Each patch keeps L_i⁻¹ for the Cholesky
 // factor L_i of |A_i| (lower triangle, packed): half the memory of |A_i|⁻¹, and a solve is
 // two triangular products, z = L_i⁻ᵀ (L_i⁻¹ r), without the serial chain of a substitution.
 #include "mlshell/vertex_patch_pc.hpp"
@@ -43,17 +43,53 @@ PetscErrorCode destroy_container(void* ctx) {
   return 0;
 }
 
+/// Rows of a sequential AIJ matrix with each column mapped to a local dof of the rank
+/// (3 × local point + component), or -1 for columns outside the rank's local points.
+struct MappedRows {
+  Mat mat = nullptr;
+  const PetscInt *ia = nullptr, *ja = nullptr;
+  const PetscScalar* values = nullptr;
+  std::vector<int> column_dof;
+  PetscErrorCode open(Mat m) {
+    PetscInt n;
+    PetscBool done;
+    PetscFunctionBeginUser;
+    mat = m;
+    PetscCall(MatGetRowIJ(mat, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "vpatch: no row access to the operator");
+    PetscCall(MatSeqAIJGetArrayRead(mat, &values));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode close() {
+    PetscInt n;
+    PetscBool done;
+    PetscFunctionBeginUser;
+    if (!mat) PetscFunctionReturn(0);
+    PetscCall(MatSeqAIJRestoreArrayRead(mat, &values));
+    PetscCall(MatRestoreRowIJ(mat, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    mat = nullptr;
+    PetscFunctionReturn(0);
+  }
+};
+
 struct VertexPatchPc {
   const VertexPatches* patches = nullptr;
   IS local_is = nullptr;         // the local points' dofs, sorted (block size 3)
   std::vector<int> position;     // local point → its block position in local_is
-  Mat* sub = nullptr;            // A restricted to local_is (several processes)
-  bool direct = false;           // one process: A itself is that submatrix
   VecScatter scatter = nullptr;  // global → local_is order
   Vec local_r = nullptr, local_z = nullptr;
+  // Where the rows of each local point are: an owned point's in the rank's diagonal and
+  // off-diagonal parts of A (block row `row[q]`), another rank's point's in `ghost_rows`, the
+  // submatrix of those rows alone (block row `row[q]`).
+  std::vector<int> row;
+  PetscInt first_block = 0;
+  IS ghost_is = nullptr;
+  Mat* ghost_rows = nullptr;
+  MappedRows diagonal, off_diagonal, ghost;
+  std::vector<std::pair<PetscInt, int>> ghost_of_block;  // (PETSc block, local point), sorted
   std::vector<std::size_t> offset;   // start of each patch's factor in `factor`
   std::unique_ptr<double[]> factor;  // L_i⁻¹ for L_i L_iᵀ = |A_i|, lower triangle packed by rows
-  std::vector<int> slot;             // block position → index in the current patch, or -1
+  std::vector<int> slot;             // local point → index in the current patch, or -1
   long shifted = 0;                  // patches that were not positive definite (last setup)
   std::size_t largest = 0;           // dofs of the largest patch
 };
@@ -61,7 +97,8 @@ struct VertexPatchPc {
 PetscErrorCode reset(PC pc) {
   auto* p = static_cast<VertexPatchPc*>(pc->data);
   PetscFunctionBeginUser;
-  if (p->sub) PetscCall(MatDestroySubMatrices(1, &p->sub));
+  if (p->ghost_rows) PetscCall(MatDestroySubMatrices(1, &p->ghost_rows));
+  PetscCall(ISDestroy(&p->ghost_is));
   PetscCall(ISDestroy(&p->local_is));
   PetscCall(VecScatterDestroy(&p->scatter));
   PetscCall(VecDestroy(&p->local_r));
@@ -146,6 +183,97 @@ void solve_packed(const double* Minv, int m, const double* r, double* y, double*
   }
 }
 
+/// One patch matrix A_i from the mapped rows of its points (dense, column-major, m × m).
+void extract_patch(const VertexPatchPc& p, const std::vector<int>& patch, Eigen::MatrixXd& D) {
+  const int k = static_cast<int>(patch.size()), num_owned = static_cast<int>(p.patches->patches.size());
+  D.setZero(3 * k, 3 * k);
+  auto add_row = [&](const MappedRows& rows, PetscInt r, int a) {
+    for (PetscInt e = rows.ia[r]; e < rows.ia[r + 1]; ++e) {
+      const int dof = rows.column_dof[rows.ja[e]];
+      if (dof < 0) continue;
+      const int b = p.slot[dof / 3];
+      if (b >= 0) D(a, 3 * b + dof % 3) = rows.values[e];
+    }
+  };
+  for (int a = 0; a < k; ++a) {
+    const int q = patch[a];
+    for (int c = 0; c < 3; ++c) {
+      const PetscInt r = 3 * static_cast<PetscInt>(p.row[q]) + c;
+      if (q < num_owned) {
+        add_row(p.diagonal, r, 3 * a + c);
+        if (p.off_diagonal.mat) add_row(p.off_diagonal, r, 3 * a + c);
+      } else {
+        add_row(p.ghost, r, 3 * a + c);
+      }
+    }
+  }
+}
+
+/// First setup for a layout: the local ordering, the scatter and the row maps.
+PetscErrorCode setup_layout(PC pc, const VertexPatches* patches) {
+  auto* p = static_cast<VertexPatchPc*>(pc->data);
+  PetscFunctionBeginUser;
+  PetscCall(reset(pc));
+  p->patches = patches;
+  const std::size_t n = patches->blocks.size(), num_owned = patches->patches.size();
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return patches->blocks[a] < patches->blocks[b]; });
+  p->position.assign(n, 0);
+  std::vector<PetscInt> sorted(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    p->position[order[k]] = static_cast<int>(k);
+    sorted[k] = patches->blocks[order[k]];
+  }
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, 3, static_cast<PetscInt>(n), sorted.data(),
+                          PETSC_COPY_VALUES, &p->local_is));
+  Vec global;
+  PetscCall(MatCreateVecs(pc->pmat, &global, nullptr));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * static_cast<PetscInt>(n), &p->local_r));
+  PetscCall(VecDuplicate(p->local_r, &p->local_z));
+  PetscCall(VecScatterCreate(global, p->local_is, p->local_r, nullptr, &p->scatter));
+  PetscCall(VecDestroy(&global));
+  // Owned points: rows and columns of the rank's diagonal part.
+  PetscInt first, last;
+  PetscCall(MatGetOwnershipRange(pc->pmat, &first, &last));
+  p->first_block = first / 3;
+  p->row.assign(n, -1);
+  p->diagonal.column_dof.assign(static_cast<std::size_t>(last - first), -1);
+  for (std::size_t q = 0; q < num_owned; ++q) {
+    const PetscInt b = patches->blocks[q] - p->first_block;
+    PetscCheck(b >= 0 && 3 * b < last - first, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+               "vpatch: owned point %zu is not in the operator's rows of this rank", q);
+    p->row[q] = static_cast<int>(b);
+    for (int c = 0; c < 3; ++c) p->diagonal.column_dof[3 * b + c] = 3 * static_cast<int>(q) + c;
+  }
+  // The other local points: their rows come from the ranks that own them, columns in local_is
+  // order.
+  std::vector<PetscInt> ghost_blocks;
+  p->ghost_of_block.clear();
+  for (std::size_t k = 0; k < n; ++k)
+    if (static_cast<std::size_t>(order[k]) >= num_owned) {
+      p->row[order[k]] = static_cast<int>(ghost_blocks.size());
+      ghost_blocks.push_back(sorted[k]);
+      p->ghost_of_block.emplace_back(sorted[k], order[k]);
+    }
+  p->ghost.column_dof.resize(3 * n);
+  for (std::size_t k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) p->ghost.column_dof[3 * k + c] = 3 * order[k] + c;
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, 3, static_cast<PetscInt>(ghost_blocks.size()),
+                          ghost_blocks.data(), PETSC_COPY_VALUES, &p->ghost_is));
+  p->offset.assign(num_owned + 1, 0);
+  p->largest = 0;
+  for (std::size_t i = 0; i < num_owned; ++i) {
+    const std::size_t m = 3 * patches->patches[i].size();
+    p->offset[i + 1] = p->offset[i] + m * (m + 1) / 2;
+    p->largest = std::max(p->largest, m);
+  }
+  p->factor.reset(new double[p->offset.back()]);
+  p->slot.assign(n, -1);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode setup(PC pc) {
   auto* p = static_cast<VertexPatchPc*>(pc->data);
   PetscFunctionBeginUser;
@@ -154,77 +282,46 @@ PetscErrorCode setup(PC pc) {
   PetscCheck(patches, PetscObjectComm((PetscObject)pc), PETSC_ERR_ARG_WRONG,
              "PC vpatch needs a matrix that knows its vertex patches (one made by mlshell's "
              "ParallelLayout::create_matrix)");
-  if (patches != p->patches) {  // first setup, or another operator layout
-    PetscCall(reset(pc));
-    p->patches = patches;
-    const std::size_t n = patches->blocks.size();
-    std::vector<int> order(n);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return patches->blocks[a] < patches->blocks[b]; });
-    p->position.assign(n, 0);
-    std::vector<PetscInt> sorted(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      p->position[order[k]] = static_cast<int>(k);
-      sorted[k] = patches->blocks[order[k]];
+  const bool first = patches != p->patches;  // first setup, or another operator layout
+  if (first) PetscCall(setup_layout(pc, patches));
+  // The rank's rows of A: the diagonal part and the off-diagonal part (its compressed columns
+  // mapped through their global indices), or A itself on one process.
+  PetscBool mpiaij, seqaij;
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc->pmat, MATMPIAIJ, &mpiaij));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc->pmat, MATSEQAIJ, &seqaij));
+  PetscCheck(mpiaij || seqaij, PetscObjectComm((PetscObject)pc), PETSC_ERR_SUP,
+             "PC vpatch needs an AIJ operator");
+  Mat diagonal = pc->pmat, off_diagonal = nullptr;
+  if (mpiaij) {
+    const PetscInt* garray;
+    PetscCall(MatMPIAIJGetSeqAIJ(pc->pmat, &diagonal, &off_diagonal, &garray));
+    PetscInt columns;
+    PetscCall(MatGetSize(off_diagonal, nullptr, &columns));
+    p->off_diagonal.column_dof.assign(static_cast<std::size_t>(columns), -1);
+    for (PetscInt k = 0; k < columns; ++k) {
+      const auto it = std::lower_bound(p->ghost_of_block.begin(), p->ghost_of_block.end(),
+                                       std::pair<PetscInt, int>{garray[k] / 3, -1});
+      if (it != p->ghost_of_block.end() && it->first == garray[k] / 3)
+        p->off_diagonal.column_dof[k] = 3 * it->second + static_cast<int>(garray[k] % 3);
     }
-    PetscCall(ISCreateBlock(PETSC_COMM_SELF, 3, static_cast<PetscInt>(n), sorted.data(),
-                            PETSC_COPY_VALUES, &p->local_is));
-    // On one process the local points are all points, sorted: A is its own submatrix.
-    PetscMPIInt size;
-    PetscBool seqaij;
-    PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)pc->pmat), &size));
-    PetscCall(PetscObjectTypeCompare((PetscObject)pc->pmat, MATSEQAIJ, &seqaij));
-    p->direct = size == 1 && seqaij && (n == 0 || sorted.back() == static_cast<PetscInt>(n) - 1);
-    if (!p->direct)
-      PetscCall(MatCreateSubMatrices(pc->pmat, 1, &p->local_is, &p->local_is, MAT_INITIAL_MATRIX,
-                                     &p->sub));
-    Vec global;
-    PetscCall(MatCreateVecs(pc->pmat, &global, nullptr));
-    PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * static_cast<PetscInt>(n), &p->local_r));
-    PetscCall(VecDuplicate(p->local_r, &p->local_z));
-    PetscCall(VecScatterCreate(global, p->local_is, p->local_r, nullptr, &p->scatter));
-    PetscCall(VecDestroy(&global));
-    p->offset.assign(patches->patches.size() + 1, 0);
-    p->largest = 0;
-    for (std::size_t i = 0; i < patches->patches.size(); ++i) {
-      const std::size_t m = 3 * patches->patches[i].size();
-      p->offset[i + 1] = p->offset[i] + m * (m + 1) / 2;
-      p->largest = std::max(p->largest, m);
-    }
-    p->factor.reset(new double[p->offset.back()]);
-    p->slot.assign(n, -1);
-  } else if (!p->direct) {
-    PetscCall(
-        MatCreateSubMatrices(pc->pmat, 1, &p->local_is, &p->local_is, MAT_REUSE_MATRIX, &p->sub));
+    // Rows of the points other ranks own (collective: every rank calls it).
+    PetscCall(MatCreateSubMatrices(pc->pmat, 1, &p->ghost_is, &p->local_is,
+                                   first ? MAT_INITIAL_MATRIX : MAT_REUSE_MATRIX, &p->ghost_rows));
+    PetscCall(p->ghost.open(p->ghost_rows[0]));
   }
-  // Each patch matrix straight from the rows of the (sub)matrix, then its inverse factor.
-  Mat local = p->direct ? pc->pmat : p->sub[0];
-  PetscInt rows_n;
-  const PetscInt *ia, *ja;
-  PetscBool done;
-  const PetscScalar* values;
-  PetscCall(MatGetRowIJ(local, 0, PETSC_FALSE, PETSC_FALSE, &rows_n, &ia, &ja, &done));
-  PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "vpatch: no row access to the patch matrix");
-  PetscCall(MatSeqAIJGetArrayRead(local, &values));
+  PetscCall(p->diagonal.open(diagonal));
+  if (off_diagonal) PetscCall(p->off_diagonal.open(off_diagonal));
+  // Each patch matrix, then its inverse factor.
   p->shifted = 0;
   Eigen::MatrixXd D;
   std::vector<double> work;
   PetscErrorCode bad = -1;
   for (std::size_t i = 0; i < patches->patches.size() && bad < 0; ++i) {
     const auto& patch = patches->patches[i];
-    const int k = static_cast<int>(patch.size()), m = 3 * k;
-    for (int a = 0; a < k; ++a) p->slot[p->position[patch[a]]] = a;
-    D.setZero(m, m);
-    for (int a = 0; a < k; ++a)
-      for (int c = 0; c < 3; ++c) {
-        const PetscInt row = 3 * p->position[patch[a]] + c;
-        for (PetscInt e = ia[row]; e < ia[row + 1]; ++e) {
-          const int b = p->slot[ja[e] / 3];
-          if (b >= 0) D(3 * a + c, 3 * b + ja[e] % 3) = values[e];
-        }
-      }
-    for (int a = 0; a < k; ++a) p->slot[p->position[patch[a]]] = -1;
+    const int m = static_cast<int>(3 * patch.size());
+    for (std::size_t a = 0; a < patch.size(); ++a) p->slot[patch[a]] = static_cast<int>(a);
+    extract_patch(*p, patch, D);
+    for (int q : patch) p->slot[q] = -1;
     // The patch matrix is symmetric up to round-off: symmetrise (in place, no temporary).
     for (int j = 0; j < m; ++j)
       for (int r = j + 1; r < m; ++r) D(r, j) = D(j, r) = 0.5 * (D(r, j) + D(j, r));
@@ -236,8 +333,9 @@ PetscErrorCode setup(PC pc) {
     if (kind < 0) bad = static_cast<PetscErrorCode>(i);
     p->shifted += kind > 0;
   }
-  PetscCall(MatSeqAIJRestoreArrayRead(local, &values));
-  PetscCall(MatRestoreRowIJ(local, 0, PETSC_FALSE, PETSC_FALSE, &rows_n, &ia, &ja, &done));
+  PetscCall(p->diagonal.close());
+  PetscCall(p->off_diagonal.close());
+  PetscCall(p->ghost.close());
   PetscCheck(bad < 0, PETSC_COMM_SELF, PETSC_ERR_FP,
              "vpatch: the patch of owned point %d has entries that are not finite",
              static_cast<int>(bad));
