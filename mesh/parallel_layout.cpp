@@ -133,13 +133,16 @@ PetscErrorCode ParallelLayout::create_vector(Vec* v) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ParallelLayout::create_matrix(Mat* A,
-                                             const std::vector<std::array<int, 2>>& extra) const {
-  PetscFunctionBeginUser;
+std::shared_ptr<const ParallelLayout::BlockPattern> ParallelLayout::block_pattern(
+    const std::vector<std::array<int, 2>>& extra) const {
+  if (pattern_ && pattern_->extra == extra) return pattern_;
   // Block rows owned here: count coupled blocks, on- and off-diagonal, over every element
   // (any rank's) whose stencil contains the row.
+  auto p = std::make_shared<BlockPattern>();
+  p->extra = extra;
   const int np = disc_.num_points();
-  std::vector<std::vector<int>> coupled(num_owned_);
+  auto& coupled = p->columns;
+  coupled.resize(num_owned_);
   std::vector<int> owned_index(np, -1);
   for (int i = 0; i < num_owned_; ++i) owned_index[local_points_[i]] = i;
   for (int f : disc_.elements()) {
@@ -152,21 +155,31 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
     if (owned_index[a] >= 0) coupled[owned_index[a]].push_back(petsc_of_natural_[b]);
     if (owned_index[b] >= 0) coupled[owned_index[b]].push_back(petsc_of_natural_[a]);
   }
-  std::vector<PetscInt> dnnz(num_owned_), onnz(num_owned_);
+  p->dnnz.assign(num_owned_, 0);
+  p->onnz.assign(num_owned_, 0);
   for (int i = 0; i < num_owned_; ++i) {
     auto& c = coupled[i];
     std::sort(c.begin(), c.end());
     c.erase(std::unique(c.begin(), c.end()), c.end());
     for (int col : c) {
       const bool diag = col >= first_owned_ && col < first_owned_ + num_owned_;
-      (diag ? dnnz[i] : onnz[i])++;
+      (diag ? p->dnnz[i] : p->onnz[i])++;
     }
   }
+  pattern_ = std::move(p);
+  return pattern_;
+}
+
+PetscErrorCode ParallelLayout::create_matrix(Mat* A,
+                                             const std::vector<std::array<int, 2>>& extra) const {
+  PetscFunctionBeginUser;
+  const auto pattern = block_pattern(extra);
   PetscCall(MatCreate(comm_, A));
   PetscCall(MatSetSizes(*A, 3 * num_owned_, 3 * num_owned_, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetType(*A, MATAIJ));
   PetscCall(MatSetBlockSize(*A, 3));
-  PetscCall(MatXAIJSetPreallocation(*A, 3, dnnz.data(), onnz.data(), nullptr, nullptr));
+  PetscCall(MatXAIJSetPreallocation(*A, 3, pattern->dnnz.data(), pattern->onnz.data(), nullptr,
+                                    nullptr));
   PetscCall(MatSetLocalToGlobalMapping(*A, l2g_, l2g_));
   PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(MatSetOption(*A, MAT_SYMMETRIC, PETSC_TRUE));
@@ -180,7 +193,7 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
   PetscCall(VecDestroy(&coordinates));
   PetscCall(attach_vertex_patches(*A, vertex_patches()));
   // Every element block is in the pattern from the start: add_element_matrix's fast path.
-  PetscCall(prefill_block_pattern(*A, coupled, vertex_patches()->blocks));
+  PetscCall(prefill_block_pattern(*A, pattern->columns, vertex_patches()->blocks));
   PetscFunctionReturn(0);
 }
 

@@ -78,6 +78,16 @@ class ParallelLayout {
   Vec local_work_ = nullptr, global_template_ = nullptr, natural_work_ = nullptr;
   VecScatter to_local_ = nullptr, to_natural_ = nullptr;
   mutable std::shared_ptr<const VertexPatches> patches_;
+  /// The block columns of each owned row for the last `extra` given to create_matrix (every
+  /// level makes several matrices of one pattern: Hessians, the mass matrix).
+  struct BlockPattern {
+    std::vector<std::array<int, 2>> extra;
+    std::vector<std::vector<int>> columns;
+    std::vector<PetscInt> dnnz, onnz;
+  };
+  mutable std::shared_ptr<const BlockPattern> pattern_;
+  std::shared_ptr<const BlockPattern> block_pattern(
+      const std::vector<std::array<int, 2>>& extra) const;
 };
 
 }  // namespace mlshell
