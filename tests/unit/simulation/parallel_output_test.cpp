@@ -97,12 +97,15 @@ TEST(MpiParallelOutput, FramesOnTwoRanksHoldTheSerialDatasets) {
     std::string la, lb;
     size_t lines = 0, vertices = 0, faces = 0;
     while (std::getline(ob, lb)) {
-      ASSERT_TRUE(std::getline(oa, la)) << "the parallel OBJ ends at line " << lines;
+      if (!std::getline(oa, la)) {
+        ADD_FAILURE() << "the parallel OBJ ends at line " << lines;
+        break;
+      }
       ++lines;
       if (lb.rfind("v ", 0) == 0) {
         ++vertices;
         std::istringstream sa(la.substr(1)), sb(lb.substr(1));
-        ASSERT_EQ(la.substr(0, 2), "v ");
+        EXPECT_EQ(la.substr(0, 2), "v ") << "line " << lines;
         for (int c = 0; c < 3; ++c) {
           double xa, xb;
           sa >> xa;
