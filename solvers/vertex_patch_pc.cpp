@@ -82,12 +82,11 @@ struct VertexPatchPc {
   // off-diagonal parts of A (block row `row[q]`), another rank's point's in `ghost_rows`, the
   // submatrix of those rows alone (block row `row[q]`).
   std::vector<int> row;
-  PetscInt first_block = 0;
   IS ghost_is = nullptr;
   Mat* ghost_rows = nullptr;
   MappedRows diagonal, off_diagonal, ghost;
   std::vector<std::pair<PetscInt, int>> ghost_of_block;  // (PETSc block, local point), sorted
-  std::vector<std::size_t> offset;   // start of each patch's factor in `factor`
+  std::vector<std::size_t> offset;                       // each patch's start in `factor`
   std::unique_ptr<double[]> factor;  // L_i⁻¹ for L_i L_iᵀ = |A_i|, lower triangle packed by rows
   std::vector<int> slot;             // local point → index in the current patch, or -1
   long shifted = 0;                  // patches that were not positive definite (last setup)
@@ -123,8 +122,8 @@ bool cholesky_packed(const double* A, int m, double* L) {
     double* Li = L + i * (i + 1) / 2;
     for (int j = 0; j <= i; ++j) {
       const double* Lj = L + j * (j + 1) / 2;
-      const double s = A[i + j * m] - Eigen::Map<const Eigen::VectorXd>(Li, j)
-                                          .dot(Eigen::Map<const Eigen::VectorXd>(Lj, j));
+      const double s = A[i + j * m] - Eigen::Map<const Eigen::VectorXd>(Li, j).dot(
+                                          Eigen::Map<const Eigen::VectorXd>(Lj, j));
       if (j < i) {
         Li[j] = s / Lj[j];
       } else {
@@ -185,7 +184,8 @@ void solve_packed(const double* Minv, int m, const double* r, double* y, double*
 
 /// One patch matrix A_i from the mapped rows of its points (dense, column-major, m × m).
 void extract_patch(const VertexPatchPc& p, const std::vector<int>& patch, Eigen::MatrixXd& D) {
-  const int k = static_cast<int>(patch.size()), num_owned = static_cast<int>(p.patches->patches.size());
+  const int k = static_cast<int>(patch.size()),
+            num_owned = static_cast<int>(p.patches->patches.size());
   D.setZero(3 * k, 3 * k);
   auto add_row = [&](const MappedRows& rows, PetscInt r, int a) {
     for (PetscInt e = rows.ia[r]; e < rows.ia[r + 1]; ++e) {
@@ -237,11 +237,11 @@ PetscErrorCode setup_layout(PC pc, const VertexPatches* patches) {
   // Owned points: rows and columns of the rank's diagonal part.
   PetscInt first, last;
   PetscCall(MatGetOwnershipRange(pc->pmat, &first, &last));
-  p->first_block = first / 3;
+  const PetscInt first_block = first / 3;
   p->row.assign(n, -1);
   p->diagonal.column_dof.assign(static_cast<std::size_t>(last - first), -1);
   for (std::size_t q = 0; q < num_owned; ++q) {
-    const PetscInt b = patches->blocks[q] - p->first_block;
+    const PetscInt b = patches->blocks[q] - first_block;
     PetscCheck(b >= 0 && 3 * b < last - first, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
                "vpatch: owned point %zu is not in the operator's rows of this rank", q);
     p->row[q] = static_cast<int>(b);
@@ -315,7 +315,7 @@ PetscErrorCode setup(PC pc) {
   p->shifted = 0;
   Eigen::MatrixXd D;
   std::vector<double> work;
-  PetscErrorCode bad = -1;
+  long bad = -1;  // the first patch that is not finite
   for (std::size_t i = 0; i < patches->patches.size() && bad < 0; ++i) {
     const auto& patch = patches->patches[i];
     const int m = static_cast<int>(3 * patch.size());
@@ -330,15 +330,14 @@ PetscErrorCode setup(PC pc) {
       work.resize(static_cast<std::size_t>(m) * m);
       invert_lower_packed(p->factor.get() + p->offset[i], m, work.data());
     }
-    if (kind < 0) bad = static_cast<PetscErrorCode>(i);
+    if (kind < 0) bad = static_cast<long>(i);
     p->shifted += kind > 0;
   }
   PetscCall(p->diagonal.close());
   PetscCall(p->off_diagonal.close());
   PetscCall(p->ghost.close());
   PetscCheck(bad < 0, PETSC_COMM_SELF, PETSC_ERR_FP,
-             "vpatch: the patch of owned point %d has entries that are not finite",
-             static_cast<int>(bad));
+             "vpatch: the patch of owned point %ld has entries that are not finite", bad);
   PetscFunctionReturn(0);
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <mpi.h>
+#include <petscsys.h>
 
 #include <exception>
 #include <filesystem>
@@ -27,6 +28,10 @@ std::string format_double(double x);
 /// Checks the shape invariants of a SurfaceSample (3 coordinates per point, 4 in-range indices
 /// per quad, displacement empty or one vector per point); throws std::invalid_argument.
 void check_surface(const SurfaceSample& surface, const char* who);
+
+/// Throws OutputError naming the file when a PETSc call failed (the writers return void, so
+/// PetscCall, which returns the error code, cannot be used in them).
+void check_petsc(PetscErrorCode ierr, const std::filesystem::path& file, const char* call);
 
 /// Rank 0's `text` on every rank.
 std::string broadcast(MPI_Comm comm, std::string text);

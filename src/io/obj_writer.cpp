@@ -54,12 +54,6 @@ void append_faces(std::string& out, const Index* c, std::size_t values, int cell
   }
 }
 
-void check(PetscErrorCode ierr, const std::filesystem::path& path, const char* call) {
-  if (ierr != 0)
-    throw OutputError("cannot write '" + path.string() + "': " + call + " failed (PETSc error " +
-                      std::to_string(static_cast<int>(ierr)) + ")");
-}
-
 }  // namespace
 
 void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
@@ -74,20 +68,21 @@ void write_obj(const std::filesystem::path& path, const SurfaceSample& surface,
 
 void write_obj(MPI_Comm comm, const std::filesystem::path& path, const FrameData& frame,
                const std::string& comment) {
+  using io_detail::check_petsc;
   PetscInt points, cells, local_points, local_cells;
-  check(VecGetSize(frame.geometry, &points), path, "VecGetSize");
-  check(VecGetLocalSize(frame.geometry, &local_points), path, "VecGetLocalSize");
-  check(ISGetSize(frame.topology, &cells), path, "ISGetSize");
-  check(ISGetLocalSize(frame.topology, &local_cells), path, "ISGetLocalSize");
+  check_petsc(VecGetSize(frame.geometry, &points), path, "VecGetSize");
+  check_petsc(VecGetLocalSize(frame.geometry, &local_points), path, "VecGetLocalSize");
+  check_petsc(ISGetSize(frame.topology, &cells), path, "ISGetSize");
+  check_petsc(ISGetLocalSize(frame.topology, &local_cells), path, "ISGetLocalSize");
   std::string vertices, faces;
   const PetscScalar* x;
-  check(VecGetArrayRead(frame.geometry, &x), path, "VecGetArrayRead");
+  check_petsc(VecGetArrayRead(frame.geometry, &x), path, "VecGetArrayRead");
   append_vertices(vertices, x, static_cast<std::size_t>(local_points / 3));
-  check(VecRestoreArrayRead(frame.geometry, &x), path, "VecRestoreArrayRead");
+  check_petsc(VecRestoreArrayRead(frame.geometry, &x), path, "VecRestoreArrayRead");
   const PetscInt* c;
-  check(ISGetIndices(frame.topology, &c), path, "ISGetIndices");
+  check_petsc(ISGetIndices(frame.topology, &c), path, "ISGetIndices");
   append_faces(faces, c, static_cast<std::size_t>(local_cells), frame.cell_size);
-  check(ISRestoreIndices(frame.topology, &c), path, "ISRestoreIndices");
+  check_petsc(ISRestoreIndices(frame.topology, &c), path, "ISRestoreIndices");
   vertices = io_detail::gather_text(comm, std::move(vertices));
   faces = io_detail::gather_text(comm, std::move(faces));
   io_detail::on_rank_zero(comm, [&] {

@@ -51,6 +51,15 @@ void check_surface(const SurfaceSample& s, const char* who) {
 
 namespace mlshell::io_detail {
 
+void check_petsc(PetscErrorCode ierr, const std::filesystem::path& file, const char* call) {
+  if (ierr == 0) return;
+  const char* text = nullptr;
+  PetscErrorMessage(ierr, &text, nullptr);
+  throw OutputError("cannot write '" + file.string() + "': " + call +
+                    " failed: " + (text ? text : "unknown PETSc error") + " (PETSc error " +
+                    std::to_string(static_cast<int>(ierr)) + ")");
+}
+
 std::string broadcast(MPI_Comm comm, std::string text) {
   int length = static_cast<int>(text.size());
   MPI_Bcast(&length, 1, MPI_INT, 0, comm);

@@ -30,16 +30,7 @@ namespace {
 static_assert(std::is_same_v<PetscScalar, double>,
               "XDMF output assumes a real double-precision PETSc build");
 
-// Throws OutputError naming the file when a PETSc call failed. The write functions return
-// void, so PetscCall (which returns the error code) cannot be used here.
-void check_petsc(PetscErrorCode ierr, const std::filesystem::path& file, const char* call) {
-  if (ierr == 0) return;
-  const char* text = nullptr;
-  PetscErrorMessage(ierr, &text, nullptr);
-  throw OutputError("cannot write '" + file.string() + "': " + call +
-                    " failed: " + (text ? text : "unknown PETSc error") + " (PETSc error " +
-                    std::to_string(static_cast<int>(ierr)) + ")");
-}
+using io_detail::check_petsc;
 
 // Owns the PETSc objects a SurfaceSample is wrapped in, so they are released on every path.
 struct SampleObjects {

@@ -3,13 +3,13 @@
 // from natural-order data).
 #include "simulation_output.hpp"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
-
-#include <sys/resource.h>
 
 #include "mlshell/effects.hpp"
 #include "mlshell/output_files.hpp"
@@ -25,8 +25,9 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
     return std::find(formats.begin(), formats.end(), f) != formats.end();
   };
   if (frame_due && (has("xdmf") || has("obj"))) {
+    // Per-face fields are XDMF cell data; OBJ has none.
     std::vector<std::pair<std::string, std::vector<double>>> fields;
-    PetscCall(problem_->face_fields(u_, disc_->num_faces(), fields));
+    if (has("xdmf")) PetscCall(problem_->face_fields(u_, disc_->num_faces(), fields));
     PetscCall(write_frame_files(n, t, has("xdmf"), has("obj"), fields));
   }
   // Only converged states are worth restarting from.
@@ -57,8 +58,8 @@ PetscErrorCode Simulation::write_frame_files(
   PetscCall(output_->sampling->sample(u_, &frame.geometry, &frame.displacement));
   PetscCall(output_->sampling->topology(&frame.topology));
   // Per-face fields go with samplings that have one cell per face (triangle meshes); they are
-  // on rank 0 (LevelProblem::face_fields), which holds the whole dataset. OBJ has no cell data.
-  if (xdmf && output_->sampling->num_cells() == disc_->num_faces())
+  // on rank 0 (LevelProblem::face_fields), which holds the whole dataset.
+  if (output_->sampling->num_cells() == disc_->num_faces())
     for (const auto& [name, values] : fields) {
       Vec v;
       PetscCall(VecCreateMPIWithArray(comm_, 1, static_cast<PetscInt>(values.size()),

@@ -10,7 +10,6 @@
 #include "mlshell/distributed_sampling.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
-#include "mlshell/subdivision/surface_sampler.hpp"
 
 namespace mlshell {
 

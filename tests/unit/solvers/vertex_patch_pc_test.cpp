@@ -50,6 +50,27 @@ struct TrampolineHessian {
   }
 };
 
+/// The Hessian shifted by `shift` (a copy carries no patches: they are attached) and PC vpatch
+/// set up on it; both destroyed with the object.
+struct ShiftedPatchPc {
+  Mat A = nullptr;
+  PC pc = nullptr;
+  PetscErrorCode setup = 0;
+  ShiftedPatchPc(const TrampolineHessian& t, double shift, MPI_Comm comm) {
+    MatDuplicate(t.H, MAT_COPY_VALUES, &A);
+    setup = attach_vertex_patches(A, t.levels->layout(0).vertex_patches());
+    MatShift(A, shift);
+    PCCreate(comm, &pc);
+    PCSetType(pc, "vpatch");
+    PCSetOperators(pc, A, A);
+    if (!setup) setup = PCSetUp(pc);
+  }
+  ~ShiftedPatchPc() {
+    PCDestroy(&pc);
+    MatDestroy(&A);
+  }
+};
+
 /// A KSP on H with the given PC, rtol 1e-8; returns the iterations to converge.
 PetscInt cg_iterations(Mat H, const char* pc_type, Vec b, Vec x) {
   KSP ksp;
@@ -95,15 +116,10 @@ void expect_exact_patch_solves(MPI_Comm comm) {
   PetscInt n;
   MatGetSize(t.H, &n, nullptr);
   for (const double shift : {0.0, -1.0}) {
-    Mat A;
-    MatDuplicate(t.H, MAT_COPY_VALUES, &A);
-    ASSERT_EQ(attach_vertex_patches(A, t.levels->layout(0).vertex_patches()), 0);
-    MatShift(A, shift);
-    PC pc;
-    PCCreate(comm, &pc);
-    PCSetType(pc, "vpatch");
-    PCSetOperators(pc, A, A);
-    ASSERT_EQ(PCSetUp(pc), 0);
+    const ShiftedPatchPc s(t, shift, comm);
+    ASSERT_EQ(s.setup, 0);
+    Mat A = s.A;
+    PC pc = s.pc;
     Vec r = random_vector(A, 5), z;
     VecDuplicate(r, &z);
     PCApply(pc, r, z);
@@ -157,8 +173,6 @@ void expect_exact_patch_solves(MPI_Comm comm) {
     ISDestroy(&all);
     VecDestroy(&r);
     VecDestroy(&z);
-    PCDestroy(&pc);
-    MatDestroy(&A);
   }
 }
 
@@ -198,15 +212,10 @@ TEST(VertexPatchPc, IsSymmetricPositiveDefiniteEvenForAnIndefiniteOperator) {
   ASSERT_EQ(register_vertex_patch_pc(), 0);
   TrampolineHessian t;
   for (const double shift : {0.0, -1.0}) {  // the Hessian, and one with negative eigenvalues
-    Mat A;
-    MatDuplicate(t.H, MAT_COPY_VALUES, &A);  // a copy carries no patches: attach them
-    ASSERT_EQ(attach_vertex_patches(A, t.levels->layout(0).vertex_patches()), 0);
-    MatShift(A, shift);
-    PC pc;
-    PCCreate(PETSC_COMM_SELF, &pc);
-    PCSetType(pc, "vpatch");
-    PCSetOperators(pc, A, A);
-    ASSERT_EQ(PCSetUp(pc), 0);
+    const ShiftedPatchPc s(t, shift, PETSC_COMM_SELF);
+    ASSERT_EQ(s.setup, 0);
+    Mat A = s.A;
+    PC pc = s.pc;
     Vec x = random_vector(A, 1), y = random_vector(A, 2), Mx, My;
     VecDuplicate(x, &Mx);
     VecDuplicate(x, &My);
@@ -221,8 +230,6 @@ TEST(VertexPatchPc, IsSymmetricPositiveDefiniteEvenForAnIndefiniteOperator) {
     EXPECT_NEAR(xMy, yMx, 1e-12 * std::sqrt(mx * my) * 32.0) << "shift " << shift;
     EXPECT_GT(xMx, 0.0) << "shift " << shift;
     for (Vec* w : {&x, &y, &Mx, &My}) VecDestroy(w);
-    PCDestroy(&pc);
-    MatDestroy(&A);
   }
 }
 
