@@ -10,8 +10,15 @@
 namespace mlshell {
 
 PetscReal TrustRegionParameters::updated_radius(PetscReal rho, PetscReal delta,
-                                                PetscReal step_norm) const {
-  if (!(rho > eta1)) return gamma1 * delta;
+                                                PetscReal used) const {
+  if (!(rho > eta1)) {
+    // γ₁Δ, γ₁²Δ, ... down to the first radius below the step's need: the larger ones would
+    // return the same step and reject it again.
+    PetscReal shrunk = gamma1 * delta;
+    if (used > 0.0)
+      while (shrunk >= used * delta) shrunk *= gamma1;
+    return shrunk;
+  }
   // Capped far beyond any meaningful step (and the 1e15 of eq. 7.1) so that it never overflows.
   if (rho > eta2) return std::min<PetscReal>(gamma2 * delta, 1e30);
   return delta;
@@ -211,8 +218,11 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
   ++counters_.qp_solves;
   PetscReal model_decrease = it->qp.model_decrease;
   it->step_norm = it->qp.step_norm;
+  // The share of the radius the step needs: a larger radius would give the same step.
+  it->radius_used = qp_radius > 0 ? std::min<PetscReal>(1.0, it->qp.radius_needed / qp_radius) : 1.0;
   if (norm_) {
     PetscCall(level_norm(s_, &it->step_norm));
+    it->radius_used = std::max(it->radius_used, std::min<PetscReal>(1.0, it->step_norm / *delta));
     if (it->step_norm > *delta) {  // shorten along s: m(ts) < 0 for t ∈ (0, 1] if m(s) < 0
       PetscCall(VecScale(s_, *delta / it->step_norm));
       it->step_norm = *delta;
@@ -263,7 +273,7 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
     it->accepted = true;
     it->decrease = f_old - fx_;
   }
-  *delta = p.updated_radius(it->rho, *delta, it->step_norm);
+  *delta = p.updated_radius(it->rho, *delta, it->radius_used);
   PetscFunctionReturn(0);
 }
 

@@ -293,7 +293,10 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       if (l == finest(c)) ++c.cycle_rejected;
     }
     if (coarse_reduction > 0.0) {
-      *delta = c.params.updated_radius(rho, *delta, step_norm);
+      // γ₁Δ on rejection (used = 1): a short correction is no sign that a radius near its
+      // length would give the same one (the coarse radii follow Δ), and shrinking to it
+      // would let a stalled coarse level collapse the fine radius.
+      *delta = c.params.updated_radius(rho, *delta, 1.0);
       PetscCall(cap_radius(c, l, fine_radius, delta));
     }
   }

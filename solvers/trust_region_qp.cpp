@@ -1,6 +1,7 @@
 // Dogleg and Steihaug–Toint CG trust-region subproblem solvers (see trust_region_qp.hpp).
 #include "mlshell/trust_region_qp.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -72,8 +73,13 @@ PetscErrorCode DoglegQp::factor() {
       PetscCall(MatDuplicate(H_, MAT_DO_NOT_COPY_VALUES, &shifted_));
       PetscCall(MatSetOption(shifted_, MAT_SYMMETRIC, PETSC_TRUE));  // for Cholesky
     }
-    PetscReal lambda = 1e-6 * norm;
-    for (int k = 0; k < 12 && (factor_failed_ || indefinite_) && norm > 0; ++k, lambda *= 10) {
+    // The least λ on a decade grid that makes H + λI positive definite: a larger shift damps
+    // the soft modes (bending, inertia), whose eigenvalues lie many decades below ‖H‖∞, and
+    // leaves the step no longer than the shift allows, whatever the radius. The grid starts a
+    // decade below the previous Hessian's λ (shifts change slowly along a solve), the first
+    // time at 10⁻¹⁰‖H‖∞; H + λI is definite by λ = ‖H‖∞ (Gershgorin).
+    PetscReal lambda = std::max(1e-14 * norm, last_shift_ > 0 ? last_shift_ / 10 : 1e-10 * norm);
+    for (; (factor_failed_ || indefinite_) && lambda <= 10 * norm; lambda *= 10) {
       PetscCall(MatCopy(H_, shifted_, SAME_NONZERO_PATTERN));
       PetscCall(MatShift(shifted_, lambda));
       // After a failed factorisation MUMPS must start over (symbolic phase included).
@@ -83,6 +89,7 @@ PetscErrorCode DoglegQp::factor() {
       PetscCall(factor_operator());
       shift_ = lambda;
     }
+    if (!factor_failed_ && !indefinite_) last_shift_ = shift_;
   }
   PetscFunctionReturn(0);
 }
@@ -140,9 +147,11 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
   if (!(gHg > 0.0) || gnorm * gnorm / gHg * gnorm >= radius) {
     PetscCall(VecAXPBY(s, -radius / gnorm, 0.0, g));  // to the boundary
     result.kind = "cauchy";
+    result.radius_needed = radius;
     done = true;
   } else {
     PetscCall(VecAXPBY(pC, -gnorm * gnorm / gHg, 0.0, g));
+    result.radius_needed = gnorm * gnorm / gHg * gnorm;  // ‖p_C‖
   }
   if (!done) {
     // Newton point p_N = −H⁻¹g; the factorisation is computed once per operator.
@@ -173,6 +182,7 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
       if (pnorm <= radius) {
         PetscCall(VecCopy(pN, s));
         result.kind = shift_ > 0 ? "shifted" : "newton";
+        result.radius_needed = std::max(result.radius_needed, pnorm);
       } else {
         // ‖p_C + t (p_N − p_C)‖ = Δ for t ∈ [0, 1].
         Vec d = pN;
@@ -186,6 +196,7 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
         const PetscReal t = (-b + std::sqrt(std::max(0.0, b * b - 4.0 * a * c))) / (2.0 * a);
         PetscCall(VecWAXPY(s, t, d, pC));
         result.kind = shift_ > 0 ? "shifted" : "dogleg";
+        result.radius_needed = radius;
       }
       if (shift_ > 0) {  // the modified Newton point must beat the Cauchy point in the true model
         PetscReal ms, mc;
@@ -249,9 +260,13 @@ PetscErrorCode SteihaugTointQp::solve(Vec g, PetscReal radius, Vec s, QpResult& 
   PetscCall(VecNorm(s, NORM_2, &result.step_norm));
   result.iterations = static_cast<int>(its);
   result.model_decrease = -obj;
-  result.kind = (reason == KSP_CONVERGED_CG_NEG_CURVE || reason == KSP_CONVERGED_CG_CONSTRAINED)
-                    ? "boundary"
-                    : "interior";
+  const bool boundary =
+      reason == KSP_CONVERGED_CG_NEG_CURVE || reason == KSP_CONVERGED_CG_CONSTRAINED;
+  result.kind = boundary ? "boundary" : "interior";
+  if (boundary)
+    result.radius_needed = radius;
+  else
+    PetscCall(KSPCGGetNormD(ksp_, &result.radius_needed));  // ‖s‖ in the norm of the radius
   PetscFunctionReturn(0);
 }
 

@@ -3,7 +3,8 @@
 //
 // One iteration solves the subproblem (4.1) with the level's QP solver, evaluates the trial
 // point, accepts it when ρ = (f(x) − f(x+s)) / (m(0) − m(s)) > η₁ (eq. 4.2), and updates the
-// radius (Table 2). The gradient is reassembled after an accepted step, the Hessian only when the
+// radius (Table 2; a rejected step inside the region skips the radii that would return it
+// again, TrustRegionParameters::updated_radius). The gradient is reassembled after an accepted step, the Hessian only when the
 // next subproblem needs it (a point left at once by RMTR's coarse correction, or the converged
 // one, costs none), so a rejected step reuses the Hessian (and a Dogleg factorisation).
 //
@@ -33,9 +34,14 @@ namespace mlshell {
 /// η₁, η₂, γ₁, γ₂ of Table 2, and the radius update they define.
 struct TrustRegionParameters {
   PetscReal eta1 = 0.1, eta2 = 0.75, gamma1 = 0.5, gamma2 = 2.0;
-  /// The radius after a step of length ‖s‖ with ratio ρ: shrink to γ₁Δ when ρ ≤ η₁,
-  /// expand to γ₂Δ (at most 1e30) when ρ > η₂, else keep Δ (the standard half of Alg. 4.3).
-  PetscReal updated_radius(PetscReal rho, PetscReal delta, PetscReal step_norm) const;
+  /// The radius after a step with ratio ρ that needed the share `used` ∈ (0, 1] of Δ (every
+  /// radius ≥ used·Δ gives the same step): expand to γ₂Δ (at most 1e30) when ρ > η₂, keep Δ
+  /// when η₁ < ρ ≤ η₂ (the standard half of Alg. 4.3), and when ρ ≤ η₁ shrink to γ₁ᵏΔ with the
+  /// least k ≥ 1 for which γ₁ᵏ < used. The radii γ₁Δ, …, γ₁ᵏ⁻¹Δ that Alg. 4.1 would try next
+  /// give the same step, rejected again: k = 1 for a step on the boundary (the paper's γ₁Δ),
+  /// and an interior step skips those null iterations (a radius of 1e30 after a run of good
+  /// Newton steps would otherwise take 100 rejections to reach a step's length).
+  PetscReal updated_radius(PetscReal rho, PetscReal delta, PetscReal used) const;
   /// Raises PETSC_ERR_ARG_OUTOFRANGE unless 0 < η₁ < η₂ < 1 and 0 < γ₁ < 1 < γ₂.
   /// Refuses out-of-range values, naming the options (`prefix`: "-tao_rmtr_", "-tao_tr_").
   PetscErrorCode validate(MPI_Comm comm, const char* prefix) const;
@@ -99,6 +105,7 @@ struct TrustRegionIteration {
   bool accepted = false;
   PetscReal rho = 0.0;        ///< eq. (4.2); −inf when the trial point was not evaluated
   PetscReal step_norm = 0.0;  ///< ‖s‖ in the level norm
+  PetscReal radius_used = 1.0;  ///< the least radius giving the same step, over Δ (≤ 1)
   PetscReal decrease = 0.0;   ///< f(x) − f(x+s) if accepted, else 0
   bool trapezoidal = false;   ///< the actual reduction came from the gradients
   QpResult qp;

@@ -7,8 +7,9 @@
 //    Newton point comes from a sparse direct factorisation through PETSc (options prefix
 //    `<prefix>`, default Cholesky (LDLᵀ) by MUMPS). If H is indefinite or singular (negative
 //    eigenvalues in the inertia of the LDLᵀ factor, or a failed factorisation), p_N is taken
-//    from H + λI instead, with λ = 10⁻⁶‖H‖∞ raised tenfold until the factor is positive
-//    definite (at most 12 factorisations; the modified Newton point of Nocedal & Wright §3.4).
+//    from H + λI instead, with the least λ on a decade grid that makes the factor positive
+//    definite (the modified Newton point of Nocedal & Wright §3.4): the grid starts a decade
+//    below the last such λ of this solver, the first time at 10⁻¹⁰‖H‖∞, and rises tenfold.
 //    Cloth Hessians are indefinite wherever the fabric is compressed, and the plain Cauchy
 //    fallback then degenerates into steepest descent. The step is never worse than the Cauchy
 //    point in the true model: if the path gives less decrease, or p_N is not a descent
@@ -29,6 +30,10 @@ namespace mlshell {
 struct QpResult {
   PetscReal model_decrease = 0.0;  ///< m(0) − m(s) (≥ 0 for an acceptable step)
   PetscReal step_norm = 0.0;
+  /// The least radius for which the subproblem returns this same step: the radius itself for a
+  /// step on the boundary, the step's length in the radius' norm for one inside (Dogleg: the
+  /// longer of the Cauchy and Newton points; STCG: ‖s‖_M, its iterates lengthen monotonically).
+  PetscReal radius_needed = 0.0;
   int iterations = 0;     ///< CG iterations (STCG) or factorisations (Dogleg)
   const char* kind = "";  ///< "newton", "dogleg", "shifted" (Newton/dogleg with H + λI),
                           ///< "cauchy", "boundary", "interior"
@@ -55,6 +60,7 @@ class DoglegQp final : public TrustRegionQp {
   KSP ksp_ = nullptr, ksp_shifted_ = nullptr, active_ = nullptr;  // H, H + λI, the one in use
   Mat H_ = nullptr, shifted_ = nullptr;
   PetscReal shift_ = 0.0;  // λ of the factorised H + λI (0: H itself)
+  PetscReal last_shift_ = 0.0;  // the last λ that made H + λI definite (0: none yet)
   bool factored_ = false, factor_failed_ = false, indefinite_ = false;
 };
 

@@ -154,6 +154,19 @@ MUTATIONS = [
      "scale[i] = (wings[i] == EdgeWing::kClamp ? 1.0 : 0.5) * height;",
      "scale[i] = 0.5 * height;",
      "midedge bending: a clamped edge's normal turns by half the angle to the clamp", ()),
+    ("radius-skips-boundary-steps", "solvers/local_trust_region.cpp",
+     "      while (shrunk >= used * delta) shrunk *= gamma1;",
+     "      while (shrunk >= 0.5 * used * delta) shrunk *= gamma1;",
+     "a rejection shrinks the radius a step further than the radii that would repeat the step",
+     ()),
+    ("dogleg-newton-radius-needed", "solvers/trust_region_qp.cpp",
+     "        result.radius_needed = std::max(result.radius_needed, pnorm);",
+     "        result.radius_needed = result.radius_needed;",
+     "Dogleg reports the Cauchy point's length as the radius an interior Newton step needs", ()),
+    ("dogleg-shift-from-last", "solvers/trust_region_qp.cpp",
+     "last_shift_ > 0 ? last_shift_ / 10 : 1e-10 * norm",
+     "last_shift_ > 0 ? last_shift_ : 1e-10 * norm",
+     "the shift search starts at the last shift, so it never comes down", ()),
 ]
 
 

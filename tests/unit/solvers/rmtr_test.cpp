@@ -163,7 +163,9 @@ TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
     PetscInt n;
     TaoGetConvergenceHistory(solver.tao(), &f, nullptr, nullptr, nullptr, &n);
     ASSERT_GE(n, 2);
-    for (PetscInt i = 1; i < n; ++i) EXPECT_LE(f[i], f[i - 1]) << "V-cycle " << i;
+    // Up to f's rounding (trapezoidal acceptance near the limiting accuracy).
+    for (PetscInt i = 1; i < n; ++i)
+      EXPECT_LE(f[i], f[i - 1] + 1e-10 * std::abs(f[i - 1])) << "V-cycle " << i;
     RmtrStatistics stats;
     rmtr_statistics(solver.tao(), &stats);
     EXPECT_EQ(stats.fmg_cycles > 0, variant == 2) << stats.fmg_cycles;
