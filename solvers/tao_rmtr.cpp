@@ -33,11 +33,12 @@
 //   -tao_rmtr_smoother_pc none       preconditioner of the STCG smoother: none (the paper), or
 //                                    vpatch (vertex-patch Schwarz, vertex_patch_pc.hpp), or any PC
 //   -tao_rmtr_hessian_lag 0          accepted steps a level keeps its Hessian (LocalTrustRegion)
-//   -tao_rmtr_fmg_cycles 0           full-multigrid start: before the first V-cycle, solve each
-//                                    coarser level's own problem f^l with this many V-cycles,
-//                                    coarsest first, each starting from the coarser solution
-//                                    prolongated (where that lowers f^l); the finest level starts
-//                                    from the prolongated solution if it lowers f^L (0: off)
+//   -tao_rmtr_fmg_cycles 1000        full-multigrid start: before the first V-cycle, solve each
+//                                    coarser level's own problem f^l, coarsest first, from the
+//                                    coarser solution prolongated (where that lowers f^l), with
+//                                    at most this many V-cycles, to the finest level's tolerances;
+//                                    the finest level starts from the prolongated solution if it
+//                                    lowers f^L (0: off)
 //   -tao_rmtr_monitor                one line per V-cycle
 //   per-level QP options, PCMG style: -rmtr_levels_<l>_ksp_max_it, -rmtr_levels_<l>_pc_type ...
 //   for levels l ≥ 1 and -rmtr_coarse_pc_factor_mat_solver_type mumps ... for level 0.
@@ -81,7 +82,7 @@ struct RmtrContext {
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0;
   char smoother_pc[64] = "none";
-  PetscInt hessian_lag = 0, fmg_cycles = 0;
+  PetscInt hessian_lag = 0, fmg_cycles = 1000;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
@@ -315,12 +316,48 @@ PetscErrorCode keep_lower(Objective& f, Vec candidate, PetscReal f_current, Vec 
   PetscFunctionReturn(0);
 }
 
-/// The full-multigrid start (-tao_rmtr_fmg_cycles k): level by level from the coarsest, k
-/// V-cycles on the level's own problem h^l = f^l (δg = 0), started from the coarser level's
-/// solution prolongated where that is lower in f^l than the projected fine iterate (eq. 4.6);
-/// finally the finest iterate becomes the prolongated solution of level L − 1 if that lowers
-/// f^L below `f_fine`, its value at the given iterate (*moved says whether). The energy never
-/// rises.
+/// Up to c.fmg_cycles V-cycles on level l < L's own problem, from its started iterate, until the
+/// finest level's tolerances hold for it (‖g^l‖ ≤ max(gatol, gttol‖g^l₀‖)) or its solve ends as
+/// the finest one would: radius collapse, stagnation (eq. 7.1) or meandering at the round-off
+/// floor. *cycles: the V-cycles done.
+PetscErrorCode fmg_solve_level(Tao tao, RmtrContext& c, int l, std::vector<long>& successful,
+                               PetscInt* cycles) {
+  Level& lv = c.levels[l];
+  PetscReal gatol, grtol, gttol;
+  PetscFunctionBeginUser;
+  PetscCall(TaoGetTolerances(tao, &gatol, &grtol, &gttol));
+  const PetscReal g0 = lv.tr->gradient_norm(), tolerance = std::max(gatol, gttol * g0);
+  StoppingRule rule = c.stopping;
+  rule.reset_floor();
+  PetscReal delta = c.delta0, xnorm, dx;
+  Vec previous;  // not lv.scratch: the cycle uses it
+  PetscCall(VecDuplicate(lv.x0, &previous));
+  *cycles = 0;
+  while (*cycles < c.fmg_cycles && lv.tr->gradient_norm() > tolerance) {
+    PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
+    if (rule.collapsed(delta, xnorm)) break;
+    const PetscReal f_old = lv.tr->value();
+    PetscCall(VecCopy(lv.tr->solution(), previous));
+    PetscCall(cycle(tao, c, l, PETSC_INFINITY, &delta, successful));
+    ++*cycles;
+    const PetscReal f = lv.tr->value();
+    PetscCall(VecAXPY(previous, -1.0, lv.tr->solution()));
+    PetscCall(VecNorm(previous, NORM_2, &dx));
+    PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
+    if (f < f_old && rule.stagnated(delta, f_old - f, f, dx, xnorm)) break;
+    if (rule.at_floor(tao, f_old - f, lv.objective->evaluation_error(), lv.tr->gradient_norm(), g0))
+      break;
+  }
+  PetscCall(VecDestroy(&previous));
+  PetscFunctionReturn(0);
+}
+
+/// The full-multigrid start (-tao_rmtr_fmg_cycles k): level by level from the coarsest, the
+/// level's own problem h^l = f^l (δg = 0) solved with at most k V-cycles (fmg_solve_level), started
+/// from the coarser level's solution prolongated where that is lower in f^l than the projected fine
+/// iterate (eq. 4.6); finally the finest iterate becomes the prolongated solution of level L − 1 if
+/// that lowers f^L below `f_fine`, its value at the given iterate (*moved says whether). The energy
+/// never rises.
 PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine, bool* moved) {
   const int L = finest(c);
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(tao));
@@ -341,11 +378,10 @@ PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine, bool* moved)
     }
     PetscCall(lv.model->initialize_unmodified(lv.x0, &f0, lv.restricted));
     PetscCall(lv.tr->start(lv.x0, &f0, lv.restricted));
-    if (!lv.tr->finite()) PetscFunctionReturn(0);  // a projected state outside the material's domain
-    PetscReal delta = c.delta0;
+    if (!lv.tr->finite())
+      PetscFunctionReturn(0);  // a projected state outside the material's domain
     PetscInt k = 0;
-    for (; k < c.fmg_cycles && lv.tr->gradient_norm() > tao->gatol && delta > 0.0; ++k)
-      PetscCall(cycle(tao, c, l, PETSC_INFINITY, &delta, successful));
+    PetscCall(fmg_solve_level(tao, c, l, successful, &k));
     c.stats.fmg_cycles += k;
     if (c.monitor)
       PetscCall(PetscPrintf(comm,

@@ -39,6 +39,16 @@ KSP create_direct_solver(MPI_Comm comm, const std::string& prefix) {
   return ksp;
 }
 
+/// Whether MUMPS's factorisation F failed for want of workspace that ICNTL(14) enlarges
+/// (INFOG(1) = -8, -9, -11, -12, -14, -15, -17 or -20; not -13, a failed allocation).
+bool mumps_workspace_short(Mat F) {
+  PetscInt info = 0;
+  if (MatMumpsGetInfog(F, 1, &info)) return false;
+  for (PetscInt code : {-8, -9, -11, -12, -14, -15, -17, -20})
+    if (info == code) return true;
+  return false;
+}
+
 }  // namespace
 
 DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix)
@@ -101,20 +111,53 @@ PetscErrorCode DoglegQp::factor_operator() {
   PetscCall(KSPGetPC(active_, &pc));
   PetscCall(PCGetType(pc, &type));
   const bool cholesky = type && std::string(type) == PCCHOLESKY;
-  MatSolverType package = nullptr;
-  if (cholesky) {
-    PetscCall(PCFactorSetUpMatSolverType(pc));
-    PetscCall(PCFactorGetMatSolverType(pc, &package));
-    Mat F;
-    PetscCall(PCFactorGetMatrix(pc, &F));
-    // MUMPS reports the inertia of its LDLᵀ factor correctly in parallel only with ICNTL(13) = 1.
-    if (package && std::string(package) == MATSOLVERMUMPS) PetscCall(MatMumpsSetIcntl(F, 13, 1));
+  bool mumps = false;
+  for (int attempt = 0;; ++attempt) {
+    Mat F = nullptr;
+    if (cholesky) {
+      MatSolverType package = nullptr;
+      PetscCall(PCFactorSetUpMatSolverType(pc));
+      PetscCall(PCFactorGetMatSolverType(pc, &package));
+      PetscCall(PCFactorGetMatrix(pc, &F));
+      // The factor reads its options (-<prefix>mat_mumps_icntl_14 ...) under the solver's
+      // prefix; PCFactorSetUpMatSolverType leaves it unnamed.
+      const char* prefix;
+      PetscCall(KSPGetOptionsPrefix(active_, &prefix));
+      PetscCall(MatSetOptionsPrefix(F, prefix));
+      mumps = package && std::string(package) == MATSOLVERMUMPS;
+    }
+    if (mumps) {
+      // MUMPS reports the inertia of its LDLᵀ factor correctly in parallel only with ICNTL(13) = 1.
+      PetscCall(MatMumpsSetIcntl(F, 13, 1));
+    }
+    PetscCall(KSPSetUp(active_));
+    PCFailedReason failed;
+    PetscCall(PCGetFailedReason(pc, &failed));
+    factor_failed_ = failed != PC_NOERROR;
+    if (!factor_failed_ || !mumps || !mumps_workspace_short(F) || attempt == 6) break;
+    // The pivots LDLᵀ delays on a nearly singular H (the penalty's stiff rows next to soft
+    // bending) outgrow the workspace the analysis estimated: more of it, not a shift, which
+    // would damp the soft modes. MUMPS starts over with it (its options are read again, so the
+    // larger workspace goes into them), and the solver keeps it for later factorisations.
+    const char* prefix;
+    PetscInt percent;
+    PetscCall(KSPGetOptionsPrefix(active_, &prefix));
+    PetscCall(MatMumpsGetIcntl(F, 14, &percent));
+    const PetscInt larger = std::max<PetscInt>(100, 2 * percent);
+    PetscCall(PetscInfo(active_,
+                        "MUMPS ran out of workspace with ICNTL(14) = %" PetscInt_FMT
+                        "; factorising again with %" PetscInt_FMT "\n",
+                        percent, larger));
+    const std::string option = std::string("-") + (prefix ? prefix : "") + "mat_mumps_icntl_14";
+    PetscCall(PetscOptionsSetValue(nullptr, option.c_str(), std::to_string(larger).c_str()));
+    Mat op;
+    PetscCall(KSPGetOperators(active_, &op, nullptr));
+    PetscCall(PetscObjectReference(reinterpret_cast<PetscObject>(op)));
+    PetscCall(KSPReset(active_));
+    PetscCall(KSPSetOperators(active_, op, op));
+    PetscCall(MatDestroy(&op));
   }
-  PetscCall(KSPSetUp(active_));
-  PCFailedReason failed;
-  PetscCall(PCGetFailedReason(pc, &failed));
-  factor_failed_ = failed != PC_NOERROR;
-  if (cholesky && !factor_failed_ && package && std::string(package) == MATSOLVERMUMPS) {
+  if (cholesky && !factor_failed_ && mumps) {
     // A negative eigenvalue of H: no Newton point to go towards. (Zero pivots would need
     // ICNTL(24); a singular H shows up as a failed factorisation or a non-finite Newton point.)
     Mat F;

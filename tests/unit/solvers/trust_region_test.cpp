@@ -135,12 +135,69 @@ TEST(TrustRegionQp, DoglegShiftsByTheLeastDecadeFromTheLastShift) {
     VecRestoreArrayRead(m.s, &s);
     return lambda;
   };
-  EXPECT_NEAR(shift_of(-2e-5), 4e-5, 1e-12);   // 4e-10 … 4e-6 are indefinite
-  EXPECT_NEAR(shift_of(-2e-3), 4e-3, 1e-12);   // from 4e-6 up
-  EXPECT_NEAR(shift_of(-2e-6), 4e-4, 1e-12);   // a decade below 4e-3 is definite already
-  EXPECT_NEAR(shift_of(-2e-6), 4e-5, 1e-12);   // and the next Hessian a decade lower still
+  EXPECT_NEAR(shift_of(-2e-5), 4e-5, 1e-12);  // 4e-10 … 4e-6 are indefinite
+  EXPECT_NEAR(shift_of(-2e-3), 4e-3, 1e-12);  // from 4e-6 up
+  EXPECT_NEAR(shift_of(-2e-6), 4e-4, 1e-12);  // a decade below 4e-3 is definite already
+  EXPECT_NEAR(shift_of(-2e-6), 4e-5, 1e-12);  // and the next Hessian a decade lower still
   EXPECT_NEAR(shift_of(-2e-6), 4e-6, 1e-12);
-  EXPECT_NEAR(shift_of(-2e-6), 4e-6, 1e-12);   // 4e-7 is indefinite: the least decade
+  EXPECT_NEAR(shift_of(-2e-6), 4e-6, 1e-12);  // 4e-7 is indefinite: the least decade
+}
+
+TEST(TrustRegionQp, DoglegGivesMumpsMoreWorkspaceInsteadOfAShift) {
+  // A positive definite path with tiny and large diagonal entries in turn and three long-range
+  // couplings per row, factorised without scaling (ICNTL(8) = 0): LDLᵀ delays about 1,700
+  // pivots, more than the analysis's estimate allows for with MUMPS's default spare workspace
+  // (ICNTL(14) = 20), and the factorisation fails with INFOG(1) = -9. That is no sign of an
+  // indefinite H: Dogleg factorises again with more workspace and takes the Newton step (a
+  // shift after the failure would damp the soft modes).
+  const PetscInt n = 2000;
+  Mat H;
+  MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 12, nullptr, &H);
+  const auto couple = [&](PetscInt i, PetscInt j) {
+    MatSetValue(H, i, j, 3e-6, INSERT_VALUES);
+    MatSetValue(H, j, i, 3e-6, INSERT_VALUES);
+  };
+  for (PetscInt i = 0; i < n; ++i) {
+    MatSetValue(H, i, i, i % 2 ? 1e3 : 1e-12, INSERT_VALUES);
+    if (i + 1 < n) couple(i, i + 1);
+    for (PetscInt a : {7919, 112648, 217377})
+      if (const PetscInt j = (i * a) % n; (i + j) % 2 == 1) couple(i, j);
+  }
+  MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY);
+  MatSetOption(H, MAT_SYMMETRIC, PETSC_TRUE);
+  Vec g, s, r;
+  MatCreateVecs(H, &g, nullptr);
+  VecSet(g, 1e-9);
+  VecDuplicate(g, &s);
+  VecDuplicate(g, &r);
+  PetscOptionsSetValue(nullptr, "-test_dogleg_workspace_mat_mumps_icntl_8", "0");
+  {
+    DoglegQp qp(PETSC_COMM_SELF, "test_dogleg_workspace_");
+    QpResult result;
+    ASSERT_EQ(qp.set_operator(H), 0);
+    ASSERT_EQ(qp.solve(g, 1e30, s, result), 0);
+    EXPECT_STREQ(result.kind, "newton");
+    MatMult(H, s, r);  // H s = −g
+    VecAXPY(r, 1.0, g);
+    PetscReal residual, gnorm;
+    VecNorm(r, NORM_2, &residual);
+    VecNorm(g, NORM_2, &gnorm);
+    EXPECT_LT(residual, 1e-6 * gnorm);
+  }
+  // The failure happened (the factor read ICNTL(8) under the solver's prefix), and the larger
+  // workspace went into the solver's options.
+  PetscInt percent = 0;
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetInt(nullptr, nullptr, "-test_dogleg_workspace_mat_mumps_icntl_14", &percent, &set);
+  EXPECT_TRUE(set);
+  EXPECT_GE(percent, 100);
+  PetscOptionsClearValue(nullptr, "-test_dogleg_workspace_mat_mumps_icntl_8");
+  PetscOptionsClearValue(nullptr, "-test_dogleg_workspace_mat_mumps_icntl_14");
+  MatDestroy(&H);
+  VecDestroy(&g);
+  VecDestroy(&s);
+  VecDestroy(&r);
 }
 
 TEST(TrustRegionQp, RadiusNeededIsTheLeastRadiusThatGivesTheSameStep) {
@@ -188,8 +245,8 @@ TEST(TrustRegionQp, RadiusNeededIsTheLeastRadiusThatGivesTheSameStep) {
 
 TEST(TrustRegionParameters, ARejectionSkipsTheRadiiThatWouldRepeatTheStep) {
   const TrustRegionParameters p;  // η₁ = 0.1, η₂ = 0.75, γ₁ = 0.5, γ₂ = 2
-  EXPECT_EQ(p.updated_radius(0.9, 8.0, 0.1), 16.0);  // very successful: γ₂Δ
-  EXPECT_EQ(p.updated_radius(0.5, 8.0, 0.1), 8.0);   // successful: Δ
+  EXPECT_EQ(p.updated_radius(0.9, 8.0, 0.1), 16.0);    // very successful: γ₂Δ
+  EXPECT_EQ(p.updated_radius(0.5, 8.0, 0.1), 8.0);     // successful: Δ
   EXPECT_EQ(p.updated_radius(1e30, 1e30, 1.0), 1e30);  // capped
   // Rejected: γ₁ᵏΔ with the least k ≥ 1 for which γ₁ᵏ < used (the step's share of Δ).
   EXPECT_EQ(p.updated_radius(0.05, 8.0, 1.0), 4.0);  // on the boundary: the paper's γ₁Δ
