@@ -39,6 +39,10 @@
 //                                    at most this many V-cycles, to the finest level's tolerances;
 //                                    the finest level starts from the prolongated solution if it
 //                                    lowers f^L (0: off)
+//   -tao_rmtr_fmg_always false       the start before every solve; by default only from the rest
+//                                    state x = 0 (a scene's first step), where the iterate says
+//                                    nothing about the solution: from a previous step's state it
+//                                    can move a folding cloth to another branch
 //   -tao_rmtr_monitor                one line per V-cycle
 //   per-level QP options, PCMG style: -rmtr_levels_<l>_ksp_max_it, -rmtr_levels_<l>_pc_type ...
 //   for levels l ≥ 1 and -rmtr_coarse_pc_factor_mat_solver_type mumps ... for level 0.
@@ -87,7 +91,7 @@ struct RmtrContext {
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
   Objective* error_source = nullptr;
-  PetscBool monitor = PETSC_FALSE, check_consistency = PETSC_FALSE;
+  PetscBool monitor = PETSC_FALSE, check_consistency = PETSC_FALSE, fmg_always = PETSC_FALSE;
   TrustRegionParameters params;
   std::unique_ptr<TaoObjective> finest;
   std::vector<Level> levels;
@@ -443,7 +447,9 @@ PetscErrorCode solve(Tao tao) {
   // Iteration 0 is the given iterate, also when the full-multigrid start moves it: tolerances
   // relative to ‖g₀‖ and the energy history refer to it.
   PetscReal f_in = 0.0, g0 = 0.0;
-  const bool fmg = c->fmg_cycles > 0 && L > 0;
+  PetscReal x_max;
+  PetscCall(VecNorm(tao->solution, NORM_INFINITY, &x_max));
+  const bool fmg = c->fmg_cycles > 0 && L > 0 && (c->fmg_always || x_max == 0.0);
   bool moved = false;
   if (fmg) {
     PetscCall(top.objective->objective(tao->solution, &f_in, tao->gradient));
@@ -560,6 +566,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                             "full-multigrid start: V-cycles on each coarser level's own problem "
                             "before the finest (0: off)",
                             "", c->fmg_cycles, &c->fmg_cycles, nullptr));
+  PetscCall(PetscOptionsBool("-tao_rmtr_fmg_always",
+                             "full-multigrid start before every solve, not only from the rest "
+                             "state x = 0",
+                             "", c->fmg_always, &c->fmg_always, nullptr));
   PetscCall(PetscOptionsBool("-tao_rmtr_monitor", "one line per V-cycle", "", c->monitor,
                              &c->monitor, nullptr));
   PetscCall(PetscOptionsBool("-tao_rmtr_check_consistency",
@@ -611,8 +621,9 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
       (double)c->params.gamma2, (double)c->eps_delta));
   if (c->fmg_cycles > 0)
     PetscCall(PetscViewerASCIIPrintf(
-        viewer, "  full-multigrid start: %" PetscInt_FMT " V-cycle(s) per coarser level\n",
-        c->fmg_cycles));
+        viewer,
+        "  full-multigrid start (%s): at most %" PetscInt_FMT " V-cycle(s) per coarser level\n",
+        c->fmg_always ? "before every solve" : "from the rest state x = 0", c->fmg_cycles));
   if (c->stats.cycles > 0) {
     PetscCall(PetscViewerASCIIPrintf(
         viewer,

@@ -240,6 +240,37 @@ TEST(Rmtr, FullMultigridStartKeepsTheTheoryAndSavesFineCycles) {
   EXPECT_NEAR(fmg.energy, plain.energy, 1e-10 * std::abs(plain.energy));
 }
 
+// The start runs from the rest state x = 0 (a scene's first step), where the iterate says nothing
+// about the solution; from any other iterate (a previous step's state, on the branch a folding
+// cloth has taken) only with -tao_rmtr_fmg_always.
+TEST(Rmtr, FullMultigridStartRunsFromTheRestStateUnlessAlways) {
+  const Scene scene = example("trampoline.yaml", 2, 1);
+  SubdivisionHierarchy sub(build_cage(scene.geometry), 2);
+  LevelHierarchy levels(PETSC_COMM_SELF, sub, 0, 3);
+  MultilevelProblem problem(scene, levels, CageFrame::from(scene.geometry));
+  for (const bool always : {false, true}) {
+    ScopedOptions o({{"-tao_rmtr_fmg_always", always ? "1" : "0"}});
+    Vec u, v;
+    levels.layout(2).create_vector(&u);
+    VecDuplicate(u, &v);
+    problem.synchronize(scene.time.dt, u, v);
+    StepSolver solver(problem.level(2), &problem);
+    SolveReport report;
+    ASSERT_EQ(solver.solve(u, report), 0);
+    ASSERT_TRUE(report.converged) << report.reason;
+    RmtrStatistics stats;
+    rmtr_statistics(solver.tao(), &stats);
+    EXPECT_GT(stats.fmg_cycles, 0) << always;
+    VecScale(u, 0.5);  // away from the solution, not at rest
+    ASSERT_EQ(solver.solve(u, report), 0);
+    ASSERT_TRUE(report.converged) << report.reason;
+    rmtr_statistics(solver.tao(), &stats);
+    EXPECT_EQ(stats.fmg_cycles > 0, always) << stats.fmg_cycles;
+    VecDestroy(&u);
+    VecDestroy(&v);
+  }
+}
+
 // The paper's smoother (ten plain STCG iterations) leaves near-null modes of the ghost ring and
 // the boundary rows, which the coarse levels cannot represent, untouched: on the trampoline it
 // stalls (|g| ~ 1e-2 after 30 V-cycles, README). Preconditioned by vertex patches, whose exact
