@@ -151,8 +151,9 @@ def parallel(rows, out):
     return _save(fig, out, "parallel.png")
 
 
-def scaling(rows, out):
-    """V-cycles (iterations), wall time and peak memory per rank against dofs, per solver."""
+def scaling(rows, out, scene="trampoline"):
+    """V-cycles (iterations), wall time and peak memory per rank against dofs, per solver, for
+    one scene (scaling.png for the trampoline, scaling_<scene>.png for the others)."""
     solvers = list(dict.fromkeys(r["solver"] for r in rows))
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
     drawn = False
@@ -170,5 +171,5 @@ def scaling(rows, out):
                                 "peak resident memory, largest rank [MiB]")):
         ax.set(xlabel="dofs", ylabel=label)
         ax.legend(fontsize=7)
-    axes[0].set_title("trampoline, one step dt = 1 (converged runs)")
-    return _save(fig, out, "scaling.png")
+    axes[0].set_title(f"{scene}, one step dt = 1 (converged runs)")
+    return _save(fig, out, "scaling.png" if scene == "trampoline" else f"scaling_{scene}.png")

@@ -194,6 +194,26 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| 8, 25 | **not met** |", text)  # 25 > 20 V-cycles at 201,243 dofs
         self.assertIn("](scaling.png)", text)
 
+    def test_scaling_of_each_scene_in_its_own_table(self):
+        # A free-hanging scene's rows get their own table and plot, and stay out of the
+        # trampoline's goals (its faster single-level run is no trampoline peer).
+        write(self.out, "scaling", [
+            run_row("trampoline", 51483, 1, solver="rmtr-patch", refine=5, wall_time=10.0,
+                    peak_rss_mib=300),
+            run_row("trampoline", 51483, 9, solver="tr", refine=5, wall_time=25.0,
+                    peak_rss_mib=450),
+            run_row("drooping", 51483, 11, solver="rmtr", refine=5, wall_time=109.0,
+                    peak_rss_mib=900),
+            run_row("drooping", 51483, 400, solver="tr", refine=5, wall_time=2.0,
+                    peak_rss_mib=400)])
+        text = self.build()
+        self.assertIn("RMTR at scale on free-hanging cloth: drooping", text)
+        self.assertIn("| 5 | 51,483 | 11 · 109 s · 900 MiB | 400 · 2 s · 400 MiB |", text)
+        self.assertIn("| 5 | 51,483 | 1 · 10 s · 300 MiB | 9 · 25 s · 450 MiB |", text)
+        self.assertIn("tr takes 2.50× its time", text)
+        self.assertIn("](scaling_drooping.png)", text)
+        self.assertTrue((self.out / "scaling_drooping.png").exists())
+
     def test_goals_not_measured_are_said_so(self):
         write(self.out, "projection", [run_row("trampoline", 3675, 81, projection="reverse",
                                                levels=4)])
