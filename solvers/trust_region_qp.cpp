@@ -111,6 +111,8 @@ PetscErrorCode DoglegQp::factor_operator() {
   PetscCall(KSPGetPC(active_, &pc));
   PetscCall(PCGetType(pc, &type));
   const bool cholesky = type && std::string(type) == PCCHOLESKY;
+  const char* prefix;
+  PetscCall(KSPGetOptionsPrefix(active_, &prefix));
   bool mumps = false;
   for (int attempt = 0;; ++attempt) {
     Mat F = nullptr;
@@ -121,8 +123,6 @@ PetscErrorCode DoglegQp::factor_operator() {
       PetscCall(PCFactorGetMatrix(pc, &F));
       // The factor reads its options (-<prefix>mat_mumps_icntl_14 ...) under the solver's
       // prefix; PCFactorSetUpMatSolverType leaves it unnamed.
-      const char* prefix;
-      PetscCall(KSPGetOptionsPrefix(active_, &prefix));
       PetscCall(MatSetOptionsPrefix(F, prefix));
       mumps = package && std::string(package) == MATSOLVERMUMPS;
     }
@@ -139,9 +139,7 @@ PetscErrorCode DoglegQp::factor_operator() {
     // bending) outgrow the workspace the analysis estimated: more of it, not a shift, which
     // would damp the soft modes. MUMPS starts over with it (its options are read again, so the
     // larger workspace goes into them), and the solver keeps it for later factorisations.
-    const char* prefix;
     PetscInt percent;
-    PetscCall(KSPGetOptionsPrefix(active_, &prefix));
     PetscCall(MatMumpsGetIcntl(F, 14, &percent));
     const PetscInt larger = std::max<PetscInt>(100, 2 * percent);
     PetscCall(PetscInfo(active_,
