@@ -86,7 +86,15 @@ PetscErrorCode prefill_block_pattern(Mat A, const std::vector<std::vector<int>>&
   }
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(attach_block_columns(A, block_of_local));
+  PetscFunctionReturn(0);
+}
 
+PetscErrorCode attach_block_columns(Mat A, const std::vector<PetscInt>& block_of_local) {
+  PetscFunctionBeginUser;
+  PetscInt rstart, rend;
+  PetscCall(MatGetOwnershipRange(A, &rstart, &rend));
+  const PetscInt num_owned = (rend - rstart) / 3;
   PetscBool seq, mpi;
   PetscCall(PetscObjectTypeCompare((PetscObject)A, MATSEQAIJ, &seq));
   PetscCall(PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &mpi));

@@ -33,11 +33,17 @@ PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, Pet
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CoarseLevelModel::initialize_unmodified(Vec x0, PetscReal* f0, Vec g0) {
+PetscErrorCode CoarseLevelModel::set_unmodified(Vec x0) {
   PetscFunctionBeginUser;
   PetscCall(set_start(x0));
   PetscCall(VecSet(delta_g_, 0.0));
   delta_g_norm_ = 0.0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CoarseLevelModel::initialize_unmodified(Vec x0, PetscReal* f0, Vec g0) {
+  PetscFunctionBeginUser;
+  PetscCall(set_unmodified(x0));
   PetscCall(level_.objective(x0_, f0, g0));
   PetscFunctionReturn(0);
 }

@@ -180,10 +180,46 @@ PetscErrorCode LocalTrustRegion::start(Vec x, const PetscReal* f, Vec g) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode LocalTrustRegion::accept(Vec s) {
+PetscErrorCode LocalTrustRegion::evaluate_trial(Vec s, bool with_gradient, PetscReal* ft) {
   PetscFunctionBeginUser;
-  PetscCall(VecAXPY(x_, 1.0, s));
-  PetscCall(f_.objective(x_, &fx_, g_));
+  PetscCall(VecWAXPY(trial_, 1.0, s, x_));
+  trial_step_ = s;
+  PetscCall(f_.objective(trial_, &f_trial_, with_gradient ? g_trial_ : nullptr));
+  trial_gradient_ = with_gradient;
+  *ft = f_trial_;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalTrustRegion::trial_reduction(PetscReal predicted, PetscReal* actual,
+                                                 bool* trapezoidal) {
+  PetscFunctionBeginUser;
+  const PetscReal direct = fx_ - f_trial_, f_error = f_.evaluation_error();
+  *actual = direct;
+  *trapezoidal = false;
+  // Below the noise of f, trust the gradients, unless f rose by more than its own noise.
+  if (predicted < 1e3 * f_error && direct > -10.0 * f_error) {
+    if (!trial_gradient_) {
+      PetscCall(f_.objective(trial_, &f_trial_, g_trial_));
+      trial_gradient_ = true;
+    }
+    PetscReal gs, gts;
+    PetscCall(VecDot(g_, trial_step_, &gs));
+    PetscCall(VecDot(g_trial_, trial_step_, &gts));
+    *actual = -0.5 * (gs + gts);
+    *trapezoidal = true;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalTrustRegion::accept_trial() {
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(trial_, x_));
+  if (trial_gradient_) {  // f and ∇f at x + s are known already
+    PetscCall(VecCopy(g_trial_, g_));
+    fx_ = f_trial_;
+  } else {
+    PetscCall(f_.objective(x_, &fx_, g_));
+  }
   PetscFunctionReturn(accepted());
 }
 
@@ -219,7 +255,8 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
   PetscReal model_decrease = it->qp.model_decrease;
   it->step_norm = it->qp.step_norm;
   // The share of the radius the step needs: a larger radius would give the same step.
-  it->radius_used = qp_radius > 0 ? std::min<PetscReal>(1.0, it->qp.radius_needed / qp_radius) : 1.0;
+  it->radius_used =
+      qp_radius > 0 ? std::min<PetscReal>(1.0, it->qp.radius_needed / qp_radius) : 1.0;
   if (norm_) {
     PetscCall(level_norm(s_, &it->step_norm));
     it->radius_used = std::max(it->radius_used, std::min<PetscReal>(1.0, it->step_norm / *delta));
@@ -244,35 +281,23 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
   PetscReal ft = PETSC_INFINITY;
   it->rho = -PETSC_INFINITY;
   if (model_decrease > 0.0 && std::isfinite(model_decrease)) {
-    PetscCall(VecWAXPY(trial_, 1.0, s_, x_));
-    PetscCall(f_.objective(trial_, &ft, nullptr));
+    // ∇f with f when the last step was accepted: the likely next iterate's gradient in the same
+    // pass over the elements, instead of a second pass after acceptance.
+    PetscCall(evaluate_trial(s_, last_accepted_, &ft));
     ++counters_.objectives;
-    PetscReal actual = fx_ - ft;
-    const PetscReal f_error = f_.evaluation_error();
-    // Below the noise of f, trust the gradients, unless f rose by more than its own noise.
-    if (std::isfinite(ft) && model_decrease < 1e3 * f_error && actual > -10.0 * f_error) {
-      PetscCall(f_.objective(trial_, &ft, g_trial_));
-      PetscReal gs, gts;
-      PetscCall(VecDot(g_, s_, &gs));
-      PetscCall(VecDot(g_trial_, s_, &gts));
-      actual = -0.5 * (gs + gts);
-      it->trapezoidal = true;
+    if (std::isfinite(ft)) {
+      PetscReal actual;
+      PetscCall(trial_reduction(model_decrease, &actual, &it->trapezoidal));
+      it->rho = actual / model_decrease;
     }
-    if (std::isfinite(ft)) it->rho = actual / model_decrease;
   }
   if (it->rho > p.eta1) {
     const PetscReal f_old = fx_;
-    if (it->trapezoidal) {  // f and ∇f at x + s are known already
-      PetscCall(VecCopy(trial_, x_));
-      PetscCall(VecCopy(g_trial_, g_));
-      fx_ = ft;
-      PetscCall(accepted());
-    } else {
-      PetscCall(accept(s_));
-    }
+    PetscCall(accept_trial());
     it->accepted = true;
     it->decrease = f_old - fx_;
   }
+  last_accepted_ = it->accepted;
   *delta = p.updated_radius(it->rho, *delta, it->radius_used);
   PetscFunctionReturn(0);
 }

@@ -78,6 +78,7 @@ struct Level {
   Vec correction = nullptr, trial = nullptr;  // l > 0: prolongated correction, x + s
   Vec scratch = nullptr;                      // l < L: x − x₀
   long objectives = 0;                        // coarse-correction trial points
+  bool correction_passed = true;              // l > 0: the last coarse correction was accepted
   RmtrLevelStatistics stats;
 };
 
@@ -281,14 +282,19 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       PetscCall(lv.tr->level_norm(lv.correction, &step_norm));
       c.stats.max_correction_ratio =
           std::max<double>(c.stats.max_correction_ratio, step_norm / *delta);
-      PetscCall(VecWAXPY(lv.trial, 1.0, lv.correction, lv.tr->solution()));
-      PetscReal ft;
-      PetscCall(lv.objective->objective(lv.trial, &ft, nullptr));
+      PetscReal ft;  // with ∇f if the last correction passed: then accepting costs no evaluation
+      PetscCall(lv.tr->evaluate_trial(lv.correction, lv.correction_passed, &ft));
       ++lv.objectives;
-      if (std::isfinite(ft)) rho = (lv.tr->value() - ft) / coarse_reduction;
+      if (std::isfinite(ft)) {  // below the noise of f^l, from the gradients (as Local_TR does)
+        PetscReal actual;
+        bool trapezoidal;
+        PetscCall(lv.tr->trial_reduction(coarse_reduction, &actual, &trapezoidal));
+        rho = actual / coarse_reduction;
+      }
     }
+    if (coarse_reduction > 0.0) lv.correction_passed = rho > c.params.eta1;
     if (rho > c.params.eta1) {
-      PetscCall(lv.tr->accept(lv.correction));
+      PetscCall(lv.tr->accept_trial());
       ++lv.stats.coarse_accepted;
       ++successful[l];
       for (int k = 0; k < l; ++k) successful[k] += coarse_successful[k];
@@ -309,13 +315,13 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
   PetscFunctionReturn(0);
 }
 
-/// Copies `candidate` into `current` if f is finite and lower there; *taken says whether.
+/// Copies `candidate` into `current` if f is finite and lower there; *taken says whether. ∇f at
+/// the candidate comes with f into `g` (*fc the value), so that a start from it evaluates nothing.
 PetscErrorCode keep_lower(Objective& f, Vec candidate, PetscReal f_current, Vec current,
-                          bool* taken) {
+                          bool* taken, PetscReal* fc, Vec g) {
   PetscFunctionBeginUser;
-  PetscReal fc;
-  PetscCall(f.objective(candidate, &fc, nullptr));
-  *taken = std::isfinite(fc) && fc < f_current;
+  PetscCall(f.objective(candidate, fc, g));
+  *taken = std::isfinite(*fc) && *fc < f_current;
   if (*taken) PetscCall(VecCopy(candidate, current));
   PetscFunctionReturn(0);
 }
@@ -360,9 +366,10 @@ PetscErrorCode fmg_solve_level(Tao tao, RmtrContext& c, int l, std::vector<long>
 /// level's own problem h^l = f^l (δg = 0) solved with at most k V-cycles (fmg_solve_level), started
 /// from the coarser level's solution prolongated where that is lower in f^l than the projected fine
 /// iterate (eq. 4.6); finally the finest iterate becomes the prolongated solution of level L − 1 if
-/// that lowers f^L below `f_fine`, its value at the given iterate (*moved says whether). The energy
-/// never rises.
-PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine, bool* moved) {
+/// that lowers f^L below `f_fine`, its value at the given iterate (*moved says whether; then
+/// *f_moved and the finest level's `correction` hold f^L and ∇f^L there). The energy never rises.
+PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine, bool* moved,
+                         PetscReal* f_moved) {
   const int L = finest(c);
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(tao));
   PetscFunctionBeginUser;
@@ -373,14 +380,20 @@ PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine, bool* moved)
   for (int l = 0; l < L; ++l) {
     Level& lv = c.levels[l];
     PetscReal f0;
+    bool taken = false;
     if (l > 0) {
       Objective& f = c.hierarchy->level_objective(c.offset + l);
-      bool taken;
+      PetscReal fp;
       PetscCall(f.objective(lv.x0, &f0, nullptr));
       PetscCall(transfer(c, l).prolong(c.levels[l - 1].tr->solution(), lv.trial));
-      PetscCall(keep_lower(f, lv.trial, std::isfinite(f0) ? f0 : PETSC_INFINITY, lv.x0, &taken));
+      PetscCall(keep_lower(f, lv.trial, std::isfinite(f0) ? f0 : PETSC_INFINITY, lv.x0, &taken, &fp,
+                           lv.restricted));
+      if (taken) f0 = fp;
     }
-    PetscCall(lv.model->initialize_unmodified(lv.x0, &f0, lv.restricted));
+    if (taken)  // f^l and ∇f^l at the new start are in f0 and lv.restricted
+      PetscCall(lv.model->set_unmodified(lv.x0));
+    else
+      PetscCall(lv.model->initialize_unmodified(lv.x0, &f0, lv.restricted));
     PetscCall(lv.tr->start(lv.x0, &f0, lv.restricted));
     if (!lv.tr->finite())
       PetscFunctionReturn(0);  // a projected state outside the material's domain
@@ -396,7 +409,8 @@ PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine, bool* moved)
   }
   Level& top = c.levels[L];
   PetscCall(transfer(c, L).prolong(c.levels[L - 1].tr->solution(), top.trial));
-  PetscCall(keep_lower(*top.objective, top.trial, f_fine, tao->solution, moved));
+  PetscCall(
+      keep_lower(*top.objective, top.trial, f_fine, tao->solution, moved, f_moved, top.correction));
   if (*moved)  // the coarse steps now live on in the finest iterate
     for (int l = 0; l < L; ++l) c.stats.levels[l].successful += successful[l];
   if (c.monitor)
@@ -451,13 +465,16 @@ PetscErrorCode solve(Tao tao) {
   PetscCall(VecNorm(tao->solution, NORM_INFINITY, &x_max));
   const bool fmg = c->fmg_cycles > 0 && L > 0 && (c->fmg_always || x_max == 0.0);
   bool moved = false;
+  PetscReal f_moved = 0.0;
   if (fmg) {
     PetscCall(top.objective->objective(tao->solution, &f_in, tao->gradient));
     PetscCall(VecNorm(tao->gradient, NORM_2, &g0));
     if (std::isfinite(f_in) && std::isfinite(g0) && g0 > tao->gatol)
-      PetscCall(fmg_start(tao, *c, f_in, &moved));
+      PetscCall(fmg_start(tao, *c, f_in, &moved, &f_moved));
   }
-  if (fmg && !moved)  // f and ∇f at the given iterate are known
+  if (moved)  // f and ∇f at the prolongated solution are known
+    PetscCall(top.tr->start(tao->solution, &f_moved, top.correction));
+  else if (fmg)  // and at the given iterate
     PetscCall(top.tr->start(tao->solution, &f_in, tao->gradient));
   else
     PetscCall(top.tr->start(tao->solution));

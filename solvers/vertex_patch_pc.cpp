@@ -167,18 +167,17 @@ void invert_lower_packed(double* L, int m, double* work) {
     for (int j = 0; j <= i; ++j) L[i * (i + 1) / 2 + j] = work[static_cast<std::size_t>(j) * m + i];
 }
 
-/// z = M⁻ᵀ M⁻¹ r for M⁻¹ packed by rows (invert_lower_packed).
-void solve_packed(const double* Minv, int m, const double* r, double* y, double* z) {
-  for (int i = 0; i < m; ++i) {  // y = M⁻¹ r: independent row products
-    const double* Mi = Minv + i * (i + 1) / 2;
-    double s = 0.0;
-    for (int k = 0; k <= i; ++k) s += Mi[k] * r[k];
-    y[i] = s;
-  }
-  for (int k = 0; k < m; ++k) z[k] = 0.0;
-  for (int i = 0; i < m; ++i) {  // z = M⁻ᵀ y: row i of M⁻¹ scaled by y_i
-    const double* Mi = Minv + i * (i + 1) / 2;
-    for (int k = 0; k <= i; ++k) z[k] += y[i] * Mi[k];
+/// z = M⁻ᵀ M⁻¹ r for M⁻¹ packed by rows (invert_lower_packed), in one pass over M⁻¹: row i
+/// gives y_i = (M⁻¹ r)_i and adds y_i times itself to z = M⁻ᵀ y while it is in cache (the
+/// factors of all patches exceed the caches, so the pass is bound by memory traffic).
+void solve_packed(const double* Minv, int m, const double* r, double* z) {
+  using Row = Eigen::Map<const Eigen::VectorXd>;
+  Eigen::Map<Eigen::VectorXd> zm(z, m);
+  const Row rm(r, m);
+  zm.setZero();
+  for (int i = 0; i < m; ++i) {
+    const Row Mi(Minv + i * (i + 1) / 2, i + 1);
+    zm.head(i + 1) += Mi.dot(rm.head(i + 1)) * Mi;
   }
 }
 
@@ -351,14 +350,14 @@ PetscErrorCode apply(PC pc, Vec r, Vec z) {
   PetscScalar* zl;
   PetscCall(VecGetArrayRead(p->local_r, &rl));
   PetscCall(VecGetArray(p->local_z, &zl));
-  std::vector<double> rp(p->largest), yp(p->largest), zp(p->largest);
+  std::vector<double> rp(p->largest), zp(p->largest);
   const auto& patches = p->patches->patches;
   for (std::size_t i = 0; i < patches.size(); ++i) {
     const auto& patch = patches[i];
     const int m = static_cast<int>(3 * patch.size());
     for (std::size_t a = 0; a < patch.size(); ++a)
       for (int c = 0; c < 3; ++c) rp[3 * a + c] = rl[3 * p->position[patch[a]] + c];
-    solve_packed(p->factor.get() + p->offset[i], m, rp.data(), yp.data(), zp.data());
+    solve_packed(p->factor.get() + p->offset[i], m, rp.data(), zp.data());
     for (std::size_t a = 0; a < patch.size(); ++a)
       for (int c = 0; c < 3; ++c) zl[3 * p->position[patch[a]] + c] += zp[3 * a + c];
   }

@@ -22,6 +22,8 @@ class CoarseLevelModel final : public Objective {
   /// Starts the level's own problem at x₀, h = f (δg = 0: RMTR's full-multigrid start solves
   /// the coarse levels' problems before the finest); f(x₀) and ∇f(x₀) into *f0 and g0.
   PetscErrorCode initialize_unmodified(Vec x0, PetscReal* f0, Vec g0);
+  /// As initialize_unmodified, for a caller that knows f(x₀) and ∇f(x₀) already.
+  PetscErrorCode set_unmodified(Vec x0);
   PetscErrorCode objective(Vec x, PetscReal* h, Vec g) override;
   PetscErrorCode hessian(Vec x, Mat H) override { return level_.hessian(x, H); }
   /// The level's error plus that of ⟨δg, x − x₀⟩ at the last point, 8 ε ‖δg‖ ‖x − x₀‖.

@@ -30,6 +30,10 @@ namespace mlshell {
 PetscErrorCode prefill_block_pattern(Mat A, const std::vector<std::vector<int>>& columns,
                                      const std::vector<PetscInt>& block_of_local);
 
+/// What prefill_block_pattern attaches, for a matrix that has that pattern already (a duplicate
+/// of a prefilled one: MatDuplicate does not carry it over).
+PetscErrorCode attach_block_columns(Mat A, const std::vector<PetscInt>& block_of_local);
+
 /// A += the dense 3n × 3n row-major element matrix on local block indices `nodes`. Uses the
 /// CSR arrays when `A` was prefilled by prefill_block_pattern, else MatSetValuesBlockedLocal.
 /// The caller assembles A afterwards (MAT_FINAL_ASSEMBLY) as with MatSetValues.

@@ -4,9 +4,12 @@
 // One iteration solves the subproblem (4.1) with the level's QP solver, evaluates the trial
 // point, accepts it when ρ = (f(x) − f(x+s)) / (m(0) − m(s)) > η₁ (eq. 4.2), and updates the
 // radius (Table 2; a rejected step inside the region skips the radii that would return it
-// again, TrustRegionParameters::updated_radius). The gradient is reassembled after an accepted step, the Hessian only when the
-// next subproblem needs it (a point left at once by RMTR's coarse correction, or the converged
-// one, costs none), so a rejected step reuses the Hessian (and a Dogleg factorisation).
+// again, TrustRegionParameters::updated_radius). The trial point's gradient is evaluated with
+// its value when the previous step was accepted (one pass over the elements for the likely next
+// iterate; a gradient wasted on a rejection), otherwise after acceptance. The Hessian is
+// assembled only when the next subproblem needs it (a point left at once by RMTR's coarse
+// correction, or the converged one, costs none), so a rejected step reuses the Hessian (and a
+// Dogleg factorisation).
 //
 // The radius may be measured in a level norm other than ℓ₂ (RMTR's ‖·‖_l, eq. 4.9): the QP is
 // then given the ℓ₂ radius Δ·‖g‖₂/‖g‖_l, and a step still longer than Δ in the level norm is
@@ -103,11 +106,11 @@ struct TrustRegionCounters {
 /// The outcome of one iteration.
 struct TrustRegionIteration {
   bool accepted = false;
-  PetscReal rho = 0.0;        ///< eq. (4.2); −inf when the trial point was not evaluated
-  PetscReal step_norm = 0.0;  ///< ‖s‖ in the level norm
+  PetscReal rho = 0.0;          ///< eq. (4.2); −inf when the trial point was not evaluated
+  PetscReal step_norm = 0.0;    ///< ‖s‖ in the level norm
   PetscReal radius_used = 1.0;  ///< the least radius giving the same step, over Δ (≤ 1)
-  PetscReal decrease = 0.0;   ///< f(x) − f(x+s) if accepted, else 0
-  bool trapezoidal = false;   ///< the actual reduction came from the gradients
+  PetscReal decrease = 0.0;     ///< f(x) − f(x+s) if accepted, else 0
+  bool trapezoidal = false;     ///< the actual reduction came from the gradients
   QpResult qp;
 };
 
@@ -130,9 +133,17 @@ class LocalTrustRegion {
   /// One iteration of Alg. 4.1 with radius *delta (updated with `p`).
   PetscErrorCode iterate(const TrustRegionParameters& p, PetscReal* delta,
                          TrustRegionIteration* it);
-  /// Moves to x + s and reassembles the value and gradient there (the Hessian before the next
-  /// iteration, as the lag allows).
-  PetscErrorCode accept(Vec s);
+  /// f at the trial point x + s of a step found elsewhere (RMTR's coarse correction), and ∇f
+  /// with it if `with_gradient` (one pass over the elements instead of two if the point is
+  /// accepted, a gradient wasted if not).
+  PetscErrorCode evaluate_trial(Vec s, bool with_gradient, PetscReal* ft);
+  /// f(x) − f(x + s) at the last trial point (finite f there), for a step that predicted the
+  /// reduction `predicted`: below the noise of f the trapezoidal rule −½ (∇f(x) + ∇f(x+s))ᵀ s
+  /// (evaluating ∇f at x + s if needed; *trapezoidal says so), see the file comment.
+  PetscErrorCode trial_reduction(PetscReal predicted, PetscReal* actual, bool* trapezoidal);
+  /// Moves to the last trial point and takes its value and gradient (evaluating ∇f if
+  /// evaluate_trial did not); the Hessian follows before the next iteration, as the lag allows.
+  PetscErrorCode accept_trial();
   /// ‖v‖ in the level norm.
   PetscErrorCode level_norm(Vec v, PetscReal* norm) const;
 
@@ -164,10 +175,13 @@ class LocalTrustRegion {
   std::unique_ptr<TrustRegionQp> qp_;
   LevelNorm norm_;
   Vec x_ = nullptr, g_ = nullptr, s_ = nullptr, trial_ = nullptr, g_trial_ = nullptr;
-  PetscReal fx_ = 0.0, gnorm_ = 0.0;
+  PetscReal fx_ = 0.0, gnorm_ = 0.0, f_trial_ = 0.0;
   bool finite_ = false;
+  Vec trial_step_ = nullptr;        // s of the last trial point trial_ = x_ + s (not owned)
+  bool trial_gradient_ = false;     // g_trial_ holds ∇f at trial_
+  bool last_accepted_ = true;       // the last iterate() accepted its step: expect the next to pass
   int hessian_lag_ = 0, kept_ = 0;  // accepted steps the current Hessian has been kept
-  bool hessian_due_ = false;         // x_ moved past the Hessian's point: assemble before a QP
+  bool hessian_due_ = false;        // x_ moved past the Hessian's point: assemble before a QP
   TrustRegionCounters counters_;
 };
 

@@ -86,6 +86,10 @@ class ParallelLayout {
     std::vector<PetscInt> dnnz, onnz;
   };
   mutable std::shared_ptr<const BlockPattern> pattern_;
+  /// The first matrix made with the current pattern (a reference: it may outlive its maker);
+  /// create_matrix duplicates its structure.
+  mutable Mat first_matrix_ = nullptr;
+  mutable std::shared_ptr<const BlockPattern> first_pattern_;
   std::shared_ptr<const BlockPattern> block_pattern(
       const std::vector<std::array<int, 2>>& extra) const;
 };

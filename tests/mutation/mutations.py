@@ -20,6 +20,14 @@ LONG = ("studies.quick", "cli.hard_cases", "cli.paper_scenes")
 
 # name, file, old text, new text, what it breaks, long tests to run as well
 MUTATIONS = [
+    ("trial-gradient-discarded", "solvers/local_trust_region.cpp",
+     "  if (trial_gradient_) {  // f and ∇f at x + s are known already",
+     "  if (false) {  // f and ∇f at x + s are known already",
+     "an accepted trial point is evaluated again although its gradient came with its value", ()),
+    ("trial-reduction-no-trapezoid", "solvers/local_trust_region.cpp",
+     "if (predicted < 1e3 * f_error && direct > -10.0 * f_error) {", "if (false) {",
+     "the actual reduction is f(x) − f(x+s) also below the noise of f (Local_TR and RMTR's "
+     "coarse corrections)", ()),
     ("rmtr-coarse-radius", "solvers/tao_rmtr.cpp",
      "PetscReal coarse_delta = *delta;", "PetscReal coarse_delta = 1e-3 * *delta;",
      "RMTR's coarse radius is 1e-3·Δ (a useless coarse level)", ()),
@@ -120,16 +128,18 @@ MUTATIONS = [
      "patches next to another rank's points miss their coupling to them (wrong on 2 ranks only)",
      ()),
     ("vpatch-half-product", "solvers/vertex_patch_pc.cpp",
-     "    for (int k = 0; k <= i; ++k) z[k] += y[i] * Mi[k];",
-     "    z[i] += y[i] * Mi[i];",
+     "    zm.head(i + 1) += Mi.dot(rm.head(i + 1)) * Mi;",
+     "    zm[i] += Mi.dot(rm.head(i + 1)) * Mi[i];",
      "the patch solve applies only the diagonal of L^-T", ()),
     ("fmg-start-discarded", "solvers/tao_rmtr.cpp",
-     "  PetscCall(keep_lower(*top.objective, top.trial, f_fine, tao->solution, moved));",
+     "  PetscCall(\n      keep_lower(*top.objective, top.trial, f_fine, tao->solution, moved, f_moved, "
+     "top.correction));\n",
      "",
      "the full-multigrid start solves the coarse levels and then starts from the given iterate",
      ()),
     ("fmg-unprolongated-levels", "solvers/tao_rmtr.cpp",
-     "      PetscCall(keep_lower(f, lv.trial, std::isfinite(f0) ? f0 : PETSC_INFINITY, lv.x0, &taken));",
+     "      PetscCall(keep_lower(f, lv.trial, std::isfinite(f0) ? f0 : PETSC_INFINITY, lv.x0, &taken, "
+     "&fp,\n                           lv.restricted));\n",
      "",
      "the full-multigrid start solves each level from the projected start, not the coarser solution",
      ()),

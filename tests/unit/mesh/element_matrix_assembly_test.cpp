@@ -1,11 +1,12 @@
 // Element matrices written straight into the CSR arrays (element_matrix_assembly.hpp) give the
 // matrix MatSetValuesBlockedLocal gives, on one rank and on two (rows of other ranks, ghost
 // columns), and a block outside the pattern is an error, not a silent drop.
+#include "mlshell/element_matrix_assembly.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "mlshell/element_matrix_assembly.hpp"
 #include "physics_fixtures.hpp"
 
 using namespace mlshell;
@@ -26,9 +27,9 @@ int add_random_elements(const TestProblem& tp, Mat direct, Mat reference) {
     std::vector<double> values(9 * n * n);
     for (double& v : values) v = dist(rng);
     PetscCallAbort(PETSC_COMM_SELF, add_element_matrix(direct, n, nodes.data(), values.data()));
-    PetscCallAbort(PETSC_COMM_SELF, MatSetValuesBlockedLocal(reference, n, nodes.data(), n,
-                                                             nodes.data(), values.data(),
-                                                             ADD_VALUES));
+    PetscCallAbort(PETSC_COMM_SELF,
+                   MatSetValuesBlockedLocal(reference, n, nodes.data(), n, nodes.data(),
+                                            values.data(), ADD_VALUES));
     for (PetscInt v : nodes)
       if (v >= tp.layout->num_owned_points()) {
         ++touching_ghosts;
@@ -48,7 +49,8 @@ double relative_matrix_difference(const TestProblem& tp, int* touching_ghosts) {
   Mat direct, reference;
   tp.layout->create_matrix(&direct);
   tp.layout->create_matrix(&reference);
-  for (int pass = 0; pass < 2; ++pass) *touching_ghosts = add_random_elements(tp, direct, reference);
+  for (int pass = 0; pass < 2; ++pass)
+    *touching_ghosts = add_random_elements(tp, direct, reference);
   PetscReal norm, diff;
   MatNorm(reference, NORM_FROBENIUS, &norm);
   MatAXPY(reference, -1.0, direct, SAME_NONZERO_PATTERN);
@@ -64,6 +66,34 @@ TEST(ElementMatrixAssembly, MatchesMatSetValuesOnOneRank) {
   TestProblem tp("all", PETSC_COMM_SELF);
   int touching_ghosts;
   EXPECT_LT(relative_matrix_difference(tp, &touching_ghosts), 1e-14);
+}
+
+TEST(ElementMatrixAssembly, LaterMatricesOfALayoutShareItsPatternNotItsValues) {
+  // The first matrix is prefilled; later ones duplicate its structure (ParallelLayout::
+  // create_matrix). A duplicate starts at zero, has the same nonzeros, takes the fast path and
+  // keeps its values to itself.
+  TestProblem tp("elastic_denim", PETSC_COMM_SELF);
+  Mat first, second, reference;
+  tp.layout->create_matrix(&first);
+  tp.layout->create_matrix(&second);
+  tp.layout->create_matrix(&reference);
+  MatShift(first, 1.0);
+  PetscReal norm;
+  MatNorm(second, NORM_FROBENIUS, &norm);
+  EXPECT_EQ(norm, 0.0);
+  MatInfo a, b;
+  MatGetInfo(first, MAT_LOCAL, &a);
+  MatGetInfo(second, MAT_LOCAL, &b);
+  EXPECT_EQ(a.nz_used, b.nz_used);
+  EXPECT_GT(b.nz_used, 0.0);
+  add_random_elements(tp, second, reference);
+  MatAXPY(reference, -1.0, second, SAME_NONZERO_PATTERN);
+  MatNorm(reference, NORM_FROBENIUS, &norm);
+  EXPECT_EQ(norm, 0.0);
+  MatShift(first, -1.0);  // the identity it was, if the second's values stayed apart
+  MatNorm(first, NORM_FROBENIUS, &norm);
+  EXPECT_EQ(norm, 0.0) << "the second matrix's values reached the first";
+  for (Mat* m : {&first, &second, &reference}) MatDestroy(m);
 }
 
 TEST(ElementMatrixAssembly, BlockOutsideThePatternIsAnError) {

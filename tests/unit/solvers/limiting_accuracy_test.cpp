@@ -8,7 +8,9 @@
 #include <cstdint>
 #include <cstring>
 
+#include "mlshell/local_trust_region.hpp"
 #include "mlshell/trust_region.hpp"
+#include "mlshell/trust_region_qp.hpp"
 
 using namespace mlshell;
 
@@ -33,11 +35,14 @@ double noise(const PetscScalar* x, PetscInt n, std::uint64_t salt) {
 /// `g_sign` multiplying it (wrong gradients).
 struct NoisyQuadratic final : Objective {
   double f_noise = 0.0, g_noise = 0.0, g_bias = 0.0, g_sign = 1.0;
+  int evaluations = 0, gradients = 0;  // objective() calls, and those with a gradient
   static constexpr PetscInt n = 50;
   static double d(PetscInt i) { return std::pow(1e4, static_cast<double>(i) / (n - 1)); }
   PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
     const PetscScalar* a;
     PetscFunctionBeginUser;
+    ++evaluations;
+    gradients += g != nullptr;
     PetscCall(VecGetArrayRead(x, &a));
     double v = 0.0;
     for (PetscInt i = 0; i < n; ++i) v += 0.5 * d(i) * a[i] * a[i] - a[i];
@@ -170,4 +175,58 @@ TEST(LimitingAccuracy, ARadiusCollapseFarAboveTheFloorStaysAFailure) {
     EXPECT_FALSE(o.converged) << type;
     EXPECT_NEAR(o.gnorm, std::sqrt(50.0), 1e-6) << type;
   }
+}
+
+TEST(LimitingAccuracy, TheTrialReductionComesFromTheGradientsBelowTheNoiseOfTheEnergy) {
+  // LocalTrustRegion::trial_reduction, which Local_TR and RMTR's coarse corrections both use:
+  // from x = 0 along s = t (1, …, 1), the exact reduction of the quadratic is
+  // t Σ 1 − ½ t² Σ d_i, which the trapezoidal rule reproduces exactly. With energy noise 1e-6,
+  // a predicted reduction below 1e3 × 1e-6 takes it (∇f at x + s evaluated once, and no
+  // evaluation when the point is then accepted); a larger one takes f(x) − f(x + s).
+  NoisyQuadratic q;
+  q.f_noise = 1e-6;
+  Vec x, s;
+  Mat H;
+  VecCreateSeq(PETSC_COMM_SELF, NoisyQuadratic::n, &x);
+  VecDuplicate(x, &s);
+  MatCreateSeqAIJ(PETSC_COMM_SELF, NoisyQuadratic::n, NoisyQuadratic::n, 1, nullptr, &H);
+  double sum_d = 0.0;
+  for (PetscInt i = 0; i < NoisyQuadratic::n; ++i) sum_d += NoisyQuadratic::d(i);
+  {
+    LocalTrustRegion tr(q, x, H, std::make_unique<DoglegQp>(PETSC_COMM_SELF, "lat_"));
+    VecSet(x, 0.0);
+    tr.start(x);
+    for (double t : {1e-7, 1e-3}) {
+      const double exact = t * NoisyQuadratic::n - 0.5 * t * t * sum_d;
+      VecSet(s, t);
+      PetscReal ft, actual;
+      bool trapezoidal;
+      const int before = q.evaluations;
+      ASSERT_EQ(tr.evaluate_trial(s, false, &ft), 0);
+      ASSERT_EQ(tr.trial_reduction(exact, &actual, &trapezoidal), 0);
+      if (t < 1e-5) {  // exact ≈ 5e-6 < 1e-3: below the noise
+        EXPECT_TRUE(trapezoidal);
+        EXPECT_NEAR(actual, exact, 1e-12 * std::abs(exact));
+        EXPECT_EQ(q.evaluations - before, 2);  // the value, then the value with its gradient
+      } else {                                 // exact ≈ 0.05
+        EXPECT_FALSE(trapezoidal);
+        EXPECT_NEAR(actual, exact, 3e-6);  // two evaluations' noise
+        EXPECT_EQ(q.evaluations - before, 1);
+      }
+    }
+    // A trial point evaluated with its gradient is accepted without another evaluation.
+    VecSet(s, 1e-4);
+    PetscReal ft;
+    ASSERT_EQ(tr.evaluate_trial(s, true, &ft), 0);
+    const int before = q.evaluations;
+    ASSERT_EQ(tr.accept_trial(), 0);
+    EXPECT_EQ(q.evaluations, before);
+    EXPECT_EQ(tr.value(), ft);
+    PetscReal xmax;
+    VecMax(tr.solution(), nullptr, &xmax);
+    EXPECT_EQ(xmax, 1e-4);
+  }
+  MatDestroy(&H);
+  VecDestroy(&s);
+  VecDestroy(&x);
 }
