@@ -170,6 +170,7 @@ PetscErrorCode LocalTrustRegion::ensure_hessian() {
 PetscErrorCode LocalTrustRegion::start(Vec x, const PetscReal* f, Vec g) {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(x, x_));
+  reduction_ = 0.0;
   if (f && g) {
     fx_ = *f;
     PetscCall(VecCopy(g, g_));
@@ -186,6 +187,7 @@ PetscErrorCode LocalTrustRegion::evaluate_trial(Vec s, bool with_gradient, Petsc
   trial_step_ = s;
   PetscCall(f_.objective(trial_, &f_trial_, with_gradient ? g_trial_ : nullptr));
   trial_gradient_ = with_gradient;
+  trial_measured_ = fx_ - f_trial_;
   *ft = f_trial_;
   PetscFunctionReturn(0);
 }
@@ -208,12 +210,14 @@ PetscErrorCode LocalTrustRegion::trial_reduction(PetscReal predicted, PetscReal*
     *actual = -0.5 * (gs + gts);
     *trapezoidal = true;
   }
+  trial_measured_ = *actual;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode LocalTrustRegion::accept_trial() {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(trial_, x_));
+  reduction_ += trial_measured_;
   if (trial_gradient_) {  // f and ∇f at x + s are known already
     PetscCall(VecCopy(g_trial_, g_));
     fx_ = f_trial_;

@@ -274,7 +274,9 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
     std::vector<long> coarse_successful(successful.size(), 0);
     PetscReal coarse_delta = *delta;  // Δ_{c,0}^{l−1} = Δ_{c,μ₁}^l
     PetscCall(cycle(tao, c, l - 1, *delta, &coarse_delta, coarse_successful));
-    const PetscReal coarse_reduction = f0 - lc.tr->value();
+    // h(x₀) − h(x*) as the coarse steps measured it: at the round-off floor the difference of
+    // the two values has either sign, and a sound correction would be discarded on it.
+    const PetscReal coarse_reduction = lc.tr->reduction();
     PetscReal rho = -PETSC_INFINITY, step_norm = 0.0;
     if (coarse_reduction > 0.0) {
       // s = P(x^{l−1}) − P(x₀^{l−1}) (eq. 4.10)

@@ -143,6 +143,8 @@ class LocalTrustRegion {
   PetscErrorCode trial_reduction(PetscReal predicted, PetscReal* actual, bool* trapezoidal);
   /// Moves to the last trial point and takes its value and gradient (evaluating ∇f if
   /// evaluate_trial did not); the Hessian follows before the next iteration, as the lag allows.
+  /// The step's reduction, as trial_reduction measured it (f(x) − f(x + s) if it was not
+  /// called), adds to reduction().
   PetscErrorCode accept_trial();
   /// ‖v‖ in the level norm.
   PetscErrorCode level_norm(Vec v, PetscReal* norm) const;
@@ -151,6 +153,10 @@ class LocalTrustRegion {
   Vec solution() const { return x_; }
   Vec gradient() const { return g_; }
   PetscReal value() const { return fx_; }
+  /// f(x₀) − f(x) since start(x₀): the sum of the accepted steps' reductions, each as
+  /// trial_reduction measured it. Below the noise of f the difference of the two values is
+  /// round-off of either sign; this sum is what the steps achieved (RMTR's coarse reduction).
+  PetscReal reduction() const { return reduction_; }
   PetscReal gradient_norm() const { return gnorm_; }
   bool finite() const { return finite_; }
   const TrustRegionCounters& counters() const { return counters_; }
@@ -176,6 +182,8 @@ class LocalTrustRegion {
   LevelNorm norm_;
   Vec x_ = nullptr, g_ = nullptr, s_ = nullptr, trial_ = nullptr, g_trial_ = nullptr;
   PetscReal fx_ = 0.0, gnorm_ = 0.0, f_trial_ = 0.0;
+  PetscReal trial_measured_ = 0.0;  // f(x) − f(x + s) of the last trial, as last measured
+  PetscReal reduction_ = 0.0;       // reduction(): accepted steps since start()
   bool finite_ = false;
   Vec trial_step_ = nullptr;        // s of the last trial point trial_ = x_ + s (not owned)
   bool trial_gradient_ = false;     // g_trial_ holds ∇f at trial_

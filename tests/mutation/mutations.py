@@ -28,6 +28,15 @@ MUTATIONS = [
      "if (predicted < 1e3 * f_error && direct > -10.0 * f_error) {", "if (false) {",
      "the actual reduction is f(x) − f(x+s) also below the noise of f (Local_TR and RMTR's "
      "coarse corrections)", ()),
+    ("trial-measured-direct", "solvers/local_trust_region.cpp",
+     "  trial_measured_ = *actual;\n", "",
+     "an accepted step adds f(x) − f(x+s) to the reduction since the start, also where "
+     "trial_reduction took the trapezoidal rule", ()),
+    ("rmtr-coarse-reduction-difference", "solvers/tao_rmtr.cpp",
+     "const PetscReal coarse_reduction = lc.tr->reduction();",
+     "const PetscReal coarse_reduction = f0 - lc.tr->value();",
+     "RMTR's coarse reduction is the difference of two coarse values (round-off of either sign "
+     "below the noise of h)", ()),
     ("rmtr-coarse-radius", "solvers/tao_rmtr.cpp",
      "PetscReal coarse_delta = *delta;", "PetscReal coarse_delta = 1e-3 * *delta;",
      "RMTR's coarse radius is 1e-3·Δ (a useless coarse level)", ()),

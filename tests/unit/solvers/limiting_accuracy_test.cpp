@@ -230,3 +230,44 @@ TEST(LimitingAccuracy, TheTrialReductionComesFromTheGradientsBelowTheNoiseOfTheE
   VecDestroy(&s);
   VecDestroy(&x);
 }
+
+TEST(LimitingAccuracy, TheReductionSinceTheStartSumsTheAcceptedStepsAsTheirTrialsMeasuredThem) {
+  // RMTR's coarse reduction h(x₀) − h(x*) (tao_rmtr.cpp): below the noise of f the difference
+  // of the two values is round-off of either sign, and a sound coarse correction would be
+  // rejected on it. LocalTrustRegion::reduction() sums the accepted steps' measured reductions:
+  // three steps of s = 1e-8 (1, …, 1) from x = 0, each reducing f by ≈ 5e-7 under energy noise
+  // 1e-6, add up to the exact 3 t n − ½ (3t)² Σ d_i (the trapezoidal rule is exact on a
+  // quadratic); a start resets the sum.
+  NoisyQuadratic q;
+  q.f_noise = 1e-6;
+  Vec x, s;
+  Mat H;
+  VecCreateSeq(PETSC_COMM_SELF, NoisyQuadratic::n, &x);
+  VecDuplicate(x, &s);
+  MatCreateSeqAIJ(PETSC_COMM_SELF, NoisyQuadratic::n, NoisyQuadratic::n, 1, nullptr, &H);
+  double sum_d = 0.0;
+  for (PetscInt i = 0; i < NoisyQuadratic::n; ++i) sum_d += NoisyQuadratic::d(i);
+  {
+    LocalTrustRegion tr(q, x, H, std::make_unique<DoglegQp>(PETSC_COMM_SELF, "lar_"));
+    VecSet(x, 0.0);
+    ASSERT_EQ(tr.start(x), 0);
+    EXPECT_EQ(tr.reduction(), 0.0);
+    const double t = 1e-8;
+    VecSet(s, t);
+    for (int k = 0; k < 3; ++k) {
+      PetscReal ft, actual;
+      bool trapezoidal;
+      ASSERT_EQ(tr.evaluate_trial(s, false, &ft), 0);
+      ASSERT_EQ(tr.trial_reduction(t * NoisyQuadratic::n, &actual, &trapezoidal), 0);
+      EXPECT_TRUE(trapezoidal);
+      ASSERT_EQ(tr.accept_trial(), 0);
+    }
+    const double exact = 3 * t * NoisyQuadratic::n - 0.5 * (3 * t) * (3 * t) * sum_d;
+    EXPECT_NEAR(tr.reduction(), exact, 1e-9 * exact);
+    ASSERT_EQ(tr.start(x), 0);
+    EXPECT_EQ(tr.reduction(), 0.0);
+  }
+  MatDestroy(&H);
+  VecDestroy(&s);
+  VecDestroy(&x);
+}

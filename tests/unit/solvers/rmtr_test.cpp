@@ -356,6 +356,43 @@ TEST(Rmtr, CoarseLevelsSaveFineHessians) {
       << "RMTR " << rmtr.iterations << " V-cycles, TR " << tr.iterations << " iterations";
 }
 
+// A coarse correction whose reductions lie far below the round-off of the energy: RMTR judges it
+// by the reduction its coarse steps measured (the trapezoidal rule from the gradients), not by
+// the difference of two coarse values, which is round-off of either sign, so the correction is
+// taken. The trampoline at 1,083 dofs is solved tightly, then moved along a prolongated smooth
+// coarse vector by 1e-12 (an energy change of order 1e-20, against 7e-18 for one ulp of f); one
+// V-cycle with no pre-smoothing starts with the coarse correction.
+TEST(Rmtr, ACoarseCorrectionBelowTheRoundOffOfTheEnergyIsJudgedByItsMeasuredReduction) {
+  ScopedOptions o({{"-tao_rmtr_smoother_qp", "stcg"},
+                   {"-tao_rmtr_smoother_pc", "vpatch"},
+                   {"-tao_rmtr_fmg_cycles", "0"},
+                   {"-tao_gatol", "1e-11"}});
+  RestingTrampoline t;
+  {
+    StepSolver solver(t.problem.level(2), &t.problem);
+    SolveReport report;
+    ASSERT_EQ(solver.solve(t.u, report), 0);
+    ASSERT_TRUE(report.converged) << report.reason;
+  }
+  Vec c, fine;
+  t.levels.layout(1).create_vector(&c);
+  VecDuplicate(t.u, &fine);
+  VecSet(c, 1e-12);
+  t.levels.transfer(1).prolong(c, fine);
+  VecAXPY(t.u, 1.0, fine);
+  ScopedOptions one({{"-tao_rmtr_mu1", "0"}, {"-tao_max_it", "1"}, {"-tao_gatol", "1e-16"}});
+  StepSolver solver(t.problem.level(2), &t.problem);
+  SolveReport report;
+  ASSERT_EQ(solver.solve(t.u, report), 0);
+  RmtrStatistics stats;
+  rmtr_statistics(solver.tao(), &stats);
+  ASSERT_EQ(stats.levels.size(), 3u);
+  EXPECT_EQ(stats.levels[2].coarse_accepted, 1);
+  EXPECT_EQ(stats.levels[2].coarse_rejected, 0);
+  VecDestroy(&fine);
+  VecDestroy(&c);
+}
+
 namespace {
 
 /// Records the message of the first error PETSc raises while it is pushed, and returns the error
