@@ -30,6 +30,10 @@
 //        least squares (IᵀI)⁻¹Iᵀ, or restriction scaled to preserve constants (diag(R1)⁻¹R)
 //   -tao_rmtr_smoother_qp stcg|dogleg   -tao_rmtr_coarse_qp dogleg|stcg
 //   -tao_rmtr_stcg_max_it 10         STCG iterations per smoothing step
+//   -tao_rmtr_stcg_target 0.1        STCG stops once its model gradient ‖g + Hs‖ is this fraction
+//                                    of -tao_gatol: the model's gradient approximates the next
+//                                    iterate's, and a level stops at ‖g‖ ≤ gatol (0: iterate to
+//                                    -tao_rmtr_stcg_max_it or the KSP's own tolerances)
 //   -tao_rmtr_smoother_pc none       preconditioner of the STCG smoother: none (the paper), or
 //                                    vpatch (vertex-patch Schwarz, vertex_patch_pc.hpp), or any PC
 //   -tao_rmtr_hessian_lag 0          accepted steps a level keeps its Hessian (LocalTrustRegion)
@@ -89,6 +93,7 @@ struct RmtrContext {
   char smoother_pc[64] = "none";
   PetscInt hessian_lag = 0, fmg_cycles = 1000;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
+  PetscReal stcg_target = 0.1;  // STCG stops at ‖g + Hs‖ ≤ stcg_target · gatol
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
   Objective* error_source = nullptr;
@@ -451,6 +456,7 @@ PetscErrorCode solve(Tao tao) {
   const int L = finest(*c);
   Level& top = c->levels[L];
   for (Level& lv : c->levels) {
+    lv.tr->set_gradient_target(c->stcg_target * tao->gatol);
     lv.tr->reset_counters();
     lv.objectives = 0;
     lv.stats.coarse_accepted = lv.stats.coarse_rejected = 0;
@@ -559,6 +565,9 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                             "", c->coarse_max_it, &c->coarse_max_it, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_stcg_max_it", "STCG iterations per smoothing step", "",
                             c->stcg_max_it, &c->stcg_max_it, nullptr));
+  PetscCall(PetscOptionsReal("-tao_rmtr_stcg_target",
+                             "STCG stops at a model gradient of this fraction of -tao_gatol", "",
+                             c->stcg_target, &c->stcg_target, nullptr));
   PetscCall(PetscOptionsEnum("-tao_rmtr_projection", "projection of iterates to coarser levels", "",
                              kProjectionNames, static_cast<PetscEnum>(c->projection),
                              reinterpret_cast<PetscEnum*>(&c->projection), nullptr));
@@ -607,6 +616,8 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   if (c->coarse_max_it < 0) c->coarse_max_it = c->mu1 + c->mu2;
   PetscCheck(c->coarse_max_it >= 1 && c->stcg_max_it >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_coarse_max_it and -tao_rmtr_stcg_max_it must be >= 1");
+  PetscCheck(c->stcg_target >= 0 && c->stcg_target < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_stcg_target: must lie in [0, 1), got %g", (double)c->stcg_target);
   PetscCheck(c->fmg_cycles >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_fmg_cycles must be >= 0, got %" PetscInt_FMT, c->fmg_cycles);
   PetscCheck(c->hessian_lag >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -628,12 +639,12 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
   PetscCall(PetscViewerASCIIPrintf(viewer,
                                    "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT
                                    ", mu2 = %" PetscInt_FMT ", coarsest %" PetscInt_FMT
-                                   " step(s) of %s, smoother %s (%" PetscInt_FMT " iterations, "
-                                   "PC %s), projection %s\n",
+                                   " step(s) of %s, smoother %s (%" PetscInt_FMT " iterations "
+                                   "or a model gradient of %g gatol, PC %s), projection %s\n",
                                    n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1,
                                    c->mu2, c->coarse_max_it, kQpNames[c->coarse_qp],
-                                   kQpNames[c->smoother_qp], c->stcg_max_it, c->smoother_pc,
-                                   kProjectionNames[c->projection]));
+                                   kQpNames[c->smoother_qp], c->stcg_max_it, (double)c->stcg_target,
+                                   c->smoother_pc, kProjectionNames[c->projection]));
   PetscCall(PetscViewerASCIIPrintf(
       viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",
       (double)c->delta0, (double)c->params.eta1, (double)c->params.eta2, (double)c->params.gamma1,

@@ -273,6 +273,7 @@ SteihaugTointQp::SteihaugTointQp(MPI_Comm comm, const std::string& prefix, int m
   PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
   PetscCallAbort(comm, PCSetType(pc, pc_type));
   PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+  PetscCallAbort(comm, KSPGetTolerances(ksp_, &rtol_, &atol_, &dtol_, &max_it_));
 }
 
 SteihaugTointQp::~SteihaugTointQp() { KSPDestroy(&ksp_); }
@@ -290,6 +291,8 @@ PetscErrorCode SteihaugTointQp::solve(Vec g, PetscReal radius, Vec s, QpResult& 
   PetscCall(VecDuplicate(g, &b));
   PetscCall(VecAXPBY(b, -1.0, 0.0, g));  // STCG minimises ½ sᵀHs − sᵀb
   PetscCall(KSPCGSetRadius(ksp_, radius));
+  // STCG measures the unpreconditioned residual b − Hs = −(g + Hs), the model's gradient at s.
+  PetscCall(KSPSetTolerances(ksp_, rtol_, std::max(atol_, target_), dtol_, max_it_));
   PetscCall(KSPSolve(ksp_, b, s));
   PetscCall(VecDestroy(&b));
   PetscInt its;

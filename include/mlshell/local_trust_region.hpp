@@ -166,6 +166,9 @@ class LocalTrustRegion {
   /// bounded model Hessian, which is all the trust-region theory asks for; ρ measures how good it
   /// is and the radius adapts.
   void set_hessian_lag(int lag) { hessian_lag_ = lag; }
+  /// The subproblem solver may stop once its model gradient is at most `target`
+  /// (TrustRegionQp::set_gradient_target).
+  void set_gradient_target(PetscReal target) { qp_->set_gradient_target(target); }
 
  private:
   /// ‖∇f‖ and finiteness at x_; marks the Hessian due if `force` or it has been kept

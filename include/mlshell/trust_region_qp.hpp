@@ -45,6 +45,9 @@ class TrustRegionQp {
   /// Computes s for the model (g, H) and radius Δ. H must not change between set_operator calls.
   virtual PetscErrorCode set_operator(Mat H) = 0;
   virtual PetscErrorCode solve(Vec g, PetscReal radius, Vec s, QpResult& result) = 0;
+  /// A step whose model gradient ‖g + Hs‖₂ is at most `target` is good enough: an iterative
+  /// solver may stop there (0, the default: as accurately as it can). Direct solvers ignore it.
+  virtual void set_gradient_target(PetscReal target) { (void)target; }
 };
 
 class DoglegQp final : public TrustRegionQp {
@@ -73,9 +76,14 @@ class SteihaugTointQp final : public TrustRegionQp {
   ~SteihaugTointQp() override;
   PetscErrorCode set_operator(Mat H) override;
   PetscErrorCode solve(Vec g, PetscReal radius, Vec s, QpResult& result) override;
+  /// The KSP's absolute tolerance becomes max(target, `<prefix>ksp_atol`).
+  void set_gradient_target(PetscReal target) override { target_ = target; }
 
  private:
   KSP ksp_ = nullptr;
+  PetscReal rtol_ = 0.0, atol_ = 0.0, dtol_ = 0.0;  // the KSP's tolerances from the options
+  PetscInt max_it_ = 0;
+  PetscReal target_ = 0.0;
 };
 
 /// m(s) = gᵀs + ½ sᵀHs.

@@ -12,13 +12,6 @@ namespace {
 
 using DirectedEdge = std::pair<int, int>;
 
-std::map<DirectedEdge, int> directed_edge_owners(const QuadMesh& mesh) {
-  std::map<DirectedEdge, int> owner;
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int k = 0; k < 4; ++k) owner[{mesh.quads[f][k], mesh.quads[f][(k + 1) % 4]}] = f;
-  return owner;
-}
-
 }  // namespace
 
 QuadAdjacency::QuadAdjacency(const QuadMesh& mesh)
@@ -26,14 +19,22 @@ QuadAdjacency::QuadAdjacency(const QuadMesh& mesh)
       valence_(mesh.num_points(), 0),
       boundary_vertex_(mesh.num_points(), 0),
       vertex_faces_(mesh.num_points()) {
-  const auto owner = directed_edge_owners(mesh);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int k = 0; k < 4; ++k) vertex_faces_[mesh.quads[f][k]].push_back(f);
+  // The face across edge a → b of f owns b → a, and has b as a corner: search b's few faces
+  // (a map of all directed edges costs more than the rest of the set-up of a fine level).
+  const auto edge_owner = [&](int b, int a) {
+    for (int g : vertex_faces_[b])
+      for (int k = 0; k < 4; ++k)
+        if (mesh.quads[g][k] == b && mesh.quads[g][(k + 1) % 4] == a) return g;
+    return -1;
+  };
   for (int f = 0; f < mesh.num_faces(); ++f) {
     for (int k = 0; k < 4; ++k) {
       const int a = mesh.quads[f][k], b = mesh.quads[f][(k + 1) % 4];
-      vertex_faces_[a].push_back(f);
-      auto it = owner.find({b, a});
-      if (it != owner.end()) {
-        across_[4 * f + k] = it->second;
+      const int g = edge_owner(b, a);
+      if (g >= 0) {
+        across_[4 * f + k] = g;
         if (a < b) ++valence_[a], ++valence_[b];  // count each interior edge once
       } else {
         ++valence_[a], ++valence_[b];

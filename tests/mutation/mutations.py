@@ -37,6 +37,10 @@ MUTATIONS = [
      "const PetscReal coarse_reduction = f0 - lc.tr->value();",
      "RMTR's coarse reduction is the difference of two coarse values (round-off of either sign "
      "below the noise of h)", ()),
+    ("stcg-target-ignored", "solvers/trust_region_qp.cpp",
+     "std::max(atol_, target_)", "atol_",
+     "STCG runs its full iteration count whatever the model gradient (-tao_rmtr_stcg_target "
+     "ignored)", ()),
     ("rmtr-coarse-radius", "solvers/tao_rmtr.cpp",
      "PetscReal coarse_delta = *delta;", "PetscReal coarse_delta = 1e-3 * *delta;",
      "RMTR's coarse radius is 1e-3·Δ (a useless coarse level)", ()),

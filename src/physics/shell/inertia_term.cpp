@@ -25,17 +25,24 @@ InertiaTerm::~InertiaTerm() { MatDestroy(&mass_); }
 
 PetscErrorCode InertiaTerm::assemble_mass(Mat M) const {
   PetscFunctionBeginUser;
-  std::vector<double> He;
+  std::vector<double> Ms, He;
   for (const Element& e : elements_) {
     const int n = e.basis.size;
-    He.assign(9 * n * n, 0.0);
+    // The scalar mass Σ_g m_g N Nᵀ (its upper triangle), then one copy per component.
+    Ms.assign(n * n, 0.0);
     for (size_t g = 0; g < e.area.size(); ++g) {
       const double* N = e.basis.slot(static_cast<int>(g), kValue);
       const double m = coefficient_ * e.area[g];
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j)
-          for (int c = 0; c < 3; ++c) He[(3 * i + c) * 3 * n + 3 * j + c] += m * N[i] * N[j];
+      for (int i = 0; i < n; ++i) {
+        const double mi = m * N[i];
+        for (int j = i; j < n; ++j) Ms[i * n + j] += mi * N[j];
+      }
     }
+    He.assign(9 * n * n, 0.0);
+    for (int i = 0; i < n; ++i)
+      for (int j = i; j < n; ++j)
+        for (int c = 0; c < 3; ++c)
+          He[(3 * i + c) * 3 * n + 3 * j + c] = He[(3 * j + c) * 3 * n + 3 * i + c] = Ms[i * n + j];
     PetscCall(add_local_hessian(M, e.nodes, He.data()));
   }
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
