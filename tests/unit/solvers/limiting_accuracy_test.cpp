@@ -177,6 +177,27 @@ TEST(LimitingAccuracy, ARadiusCollapseFarAboveTheFloorStaysAFailure) {
   }
 }
 
+// The serial iterate, step and (unused) Hessian of a LocalTrustRegion on a NoisyQuadratic, and
+// Σ d_i, the quadratic's curvature sum.
+struct SeqWorkspace {
+  Vec x = nullptr, s = nullptr;
+  Mat H = nullptr;
+  double sum_d = 0.0;
+  SeqWorkspace() {
+    VecCreateSeq(PETSC_COMM_SELF, NoisyQuadratic::n, &x);
+    VecDuplicate(x, &s);
+    MatCreateSeqAIJ(PETSC_COMM_SELF, NoisyQuadratic::n, NoisyQuadratic::n, 1, nullptr, &H);
+    for (PetscInt i = 0; i < NoisyQuadratic::n; ++i) sum_d += NoisyQuadratic::d(i);
+  }
+  ~SeqWorkspace() {
+    MatDestroy(&H);
+    VecDestroy(&s);
+    VecDestroy(&x);
+  }
+  SeqWorkspace(const SeqWorkspace&) = delete;
+  SeqWorkspace& operator=(const SeqWorkspace&) = delete;
+};
+
 TEST(LimitingAccuracy, TheTrialReductionComesFromTheGradientsBelowTheNoiseOfTheEnergy) {
   // LocalTrustRegion::trial_reduction, which Local_TR and RMTR's coarse corrections both use:
   // from x = 0 along s = t (1, …, 1), the exact reduction of the quadratic is
@@ -185,15 +206,11 @@ TEST(LimitingAccuracy, TheTrialReductionComesFromTheGradientsBelowTheNoiseOfTheE
   // evaluation when the point is then accepted); a larger one takes f(x) − f(x + s).
   NoisyQuadratic q;
   q.f_noise = 1e-6;
-  Vec x, s;
-  Mat H;
-  VecCreateSeq(PETSC_COMM_SELF, NoisyQuadratic::n, &x);
-  VecDuplicate(x, &s);
-  MatCreateSeqAIJ(PETSC_COMM_SELF, NoisyQuadratic::n, NoisyQuadratic::n, 1, nullptr, &H);
-  double sum_d = 0.0;
-  for (PetscInt i = 0; i < NoisyQuadratic::n; ++i) sum_d += NoisyQuadratic::d(i);
+  SeqWorkspace w;
+  Vec x = w.x, s = w.s;
+  const double sum_d = w.sum_d;
   {
-    LocalTrustRegion tr(q, x, H, std::make_unique<DoglegQp>(PETSC_COMM_SELF, "lat_"));
+    LocalTrustRegion tr(q, x, w.H, std::make_unique<DoglegQp>(PETSC_COMM_SELF, "lat_"));
     VecSet(x, 0.0);
     tr.start(x);
     for (double t : {1e-7, 1e-3}) {
@@ -226,9 +243,6 @@ TEST(LimitingAccuracy, TheTrialReductionComesFromTheGradientsBelowTheNoiseOfTheE
     VecMax(tr.solution(), nullptr, &xmax);
     EXPECT_EQ(xmax, 1e-4);
   }
-  MatDestroy(&H);
-  VecDestroy(&s);
-  VecDestroy(&x);
 }
 
 TEST(LimitingAccuracy, TheReductionSinceTheStartSumsTheAcceptedStepsAsTheirTrialsMeasuredThem) {
@@ -240,15 +254,11 @@ TEST(LimitingAccuracy, TheReductionSinceTheStartSumsTheAcceptedStepsAsTheirTrial
   // quadratic); a start resets the sum.
   NoisyQuadratic q;
   q.f_noise = 1e-6;
-  Vec x, s;
-  Mat H;
-  VecCreateSeq(PETSC_COMM_SELF, NoisyQuadratic::n, &x);
-  VecDuplicate(x, &s);
-  MatCreateSeqAIJ(PETSC_COMM_SELF, NoisyQuadratic::n, NoisyQuadratic::n, 1, nullptr, &H);
-  double sum_d = 0.0;
-  for (PetscInt i = 0; i < NoisyQuadratic::n; ++i) sum_d += NoisyQuadratic::d(i);
+  SeqWorkspace w;
+  Vec x = w.x, s = w.s;
+  const double sum_d = w.sum_d;
   {
-    LocalTrustRegion tr(q, x, H, std::make_unique<DoglegQp>(PETSC_COMM_SELF, "lar_"));
+    LocalTrustRegion tr(q, x, w.H, std::make_unique<DoglegQp>(PETSC_COMM_SELF, "lar_"));
     VecSet(x, 0.0);
     ASSERT_EQ(tr.start(x), 0);
     EXPECT_EQ(tr.reduction(), 0.0);
@@ -267,7 +277,4 @@ TEST(LimitingAccuracy, TheReductionSinceTheStartSumsTheAcceptedStepsAsTheirTrial
     ASSERT_EQ(tr.start(x), 0);
     EXPECT_EQ(tr.reduction(), 0.0);
   }
-  MatDestroy(&H);
-  VecDestroy(&s);
-  VecDestroy(&x);
 }
