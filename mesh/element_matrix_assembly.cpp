@@ -54,17 +54,19 @@ PetscErrorCode check_full_blocks(Mat part, PetscInt num_owned) {
   PetscFunctionReturn(0);
 }
 
-/// Position k of the block whose first scalar column is `column` in a row of nb blocks.
+/// Position k of the block whose first scalar column is `column` in a row of nb blocks, or −1.
+/// Branch-free: the halving steps compile to conditional moves. A row holds about 25 blocks for
+/// Catmull–Clark elements, and the branches of a plain binary search over them are taken at
+/// random: mispredicted, they cost half of add_element_matrix's time (perf, 201,243 dofs).
 inline PetscInt find_block(const PetscInt* row, PetscInt nb, PetscInt column) {
-  PetscInt lo = 0, hi = nb;
-  while (lo < hi) {
-    const PetscInt mid = (lo + hi) / 2;
-    if (row[3 * mid] < column)
-      lo = mid + 1;
-    else
-      hi = mid;
+  if (nb == 0) return -1;
+  PetscInt base = 0;
+  for (PetscInt len = nb; len > 1;) {
+    const PetscInt half = len / 2;
+    base = row[3 * (base + half)] <= column ? base + half : base;
+    len -= half;
   }
-  return lo < nb && row[3 * lo] == column ? lo : -1;
+  return row[3 * base] == column ? base : -1;
 }
 
 }  // namespace

@@ -75,11 +75,27 @@ class Runner:
     def run(self, study, tag, scene, refine, options=(), dt=1.0, ranks=None, scene_text=None,
             log_view=False):
         """One step of `scene` at `refine` with the given PETSc options; returns a dict."""
+        return self.run_copies(study, tag, scene, refine, options, dt, ranks, scene_text,
+                               log_view, copies=1)[0]
+
+    def run_copies(self, study, tag, scene, refine, options=(), dt=1.0, ranks=None,
+                   scene_text=None, log_view=False, copies=2):
+        """`copies` identical runs started together (folders <tag>, <tag>-copy2, ...): what
+        sharing the machine's memory bandwidth and caches costs one run; returns their dicts."""
         ranks = ranks or self.ranks
         if refine > self.finest(scene):
-            return {"study": study, "tag": tag, "scene": scene, "refine": refine, "ranks": ranks,
-                    "dt": dt, "exit_code": None, "timed_out": False, "elapsed": 0.0,
-                    "folder": None, "summary": None, "skipped": True}
+            return [{"study": study, "tag": tag, "scene": scene, "refine": refine,
+                     "ranks": ranks, "dt": dt, "exit_code": None, "timed_out": False,
+                     "elapsed": 0.0, "folder": None, "summary": None, "skipped": True}] * copies
+        tags = [tag] + [f"{tag}-copy{k}" for k in range(2, copies + 1)]
+        # Open MPI binds a 1-rank job to core 0: copies must be free to run on the other cores.
+        binding = ["--bind-to", "none"] if copies > 1 else []
+        launched = [self._launch(study, t, scene, refine, options, dt, ranks, scene_text,
+                                 log_view, binding) for t in tags]
+        return [self._collect(*job) for job in launched]
+
+    def _launch(self, study, tag, scene, refine, options, dt, ranks, scene_text, log_view,
+                binding):
         folder = self.out / "runs" / study / tag
         folder.mkdir(parents=True, exist_ok=True)
         for stale in ("summary.json", "log_view.txt", "limit_surface.csv"):
@@ -88,37 +104,44 @@ class Runner:
         if scene_text is not None:
             scene_file = folder / f"{scene}.yaml"
             scene_file.write_text(scene_text)
-        command = ["mpiexec", "--oversubscribe", "-n", str(ranks), str(self.mlshell),
+        command = ["mpiexec", "--oversubscribe", *binding, "-n", str(ranks), str(self.mlshell),
                    str(scene_file), "-mlshell_steps", "1", "-mlshell_dt", repr(dt),
                    "-mlshell_refine", str(refine), "-mlshell_output_dir", str(folder),
                    "-mlshell_quiet", *map(str, options)]
         if log_view:
             command += ["-log_view", f":{folder / 'log_view.txt'}"]
         (folder / "command.txt").write_text(" ".join(command) + "\n")
-        start = time.monotonic()
-        timed_out = False
-        with open(folder / "stdout.txt", "w") as log:
-            try:
-                exit_code = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT,
-                                           env=mpi_environment(), timeout=self.timeout).returncode
-            except subprocess.TimeoutExpired:
-                exit_code, timed_out = None, True
-        elapsed = time.monotonic() - start
+        log = open(folder / "stdout.txt", "w")
+        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
+                                   env=mpi_environment())
+        result = {"study": study, "tag": tag, "scene": scene, "refine": refine, "ranks": ranks,
+                  "dt": dt, "exit_code": None, "timed_out": False, "elapsed": 0.0,
+                  "folder": folder, "summary": None}
+        return result, process, log, time.monotonic(), log_view
+
+    def _collect(self, result, process, log, start, log_view):
+        folder, study, tag = result["folder"], result["study"], result["tag"]
+        try:
+            remaining = max(0.0, self.timeout - (time.monotonic() - start))
+            result["exit_code"] = process.wait(timeout=remaining)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+            result["timed_out"] = True
+        log.close()
+        result["elapsed"] = time.monotonic() - start
         # The studies read summary.json, stdout, -log_view and limit_surface.csv; the frames
         # and checkpoints (gigabytes over a full study) are not kept.
         for pattern in ("*.h5", "*.obj", "*.xdmf", "checkpoint_*.bin"):
             for heavy in folder.glob(pattern):
                 heavy.unlink()
-        result = {"study": study, "tag": tag, "scene": scene, "refine": refine, "ranks": ranks,
-                  "dt": dt, "exit_code": exit_code, "timed_out": timed_out, "elapsed": elapsed,
-                  "folder": folder, "summary": None}
         summary = folder / "summary.json"
-        if summary.is_file() and not timed_out:
+        if summary.is_file() and not result["timed_out"]:
             result["summary"] = json.loads(summary.read_text())
-        if exit_code not in (0, 3) and not timed_out:
+        if result["exit_code"] not in (0, 3) and not result["timed_out"]:
             tail = (folder / "stdout.txt").read_text().strip().splitlines()[-3:]
-            print(f"  [{study}] {tag}: mlshell failed with exit {exit_code}: {' | '.join(tail)}",
-                  flush=True)
+            print(f"  [{study}] {tag}: mlshell failed with exit {result['exit_code']}: "
+                  f"{' | '.join(tail)}", flush=True)
         if log_view and (folder / "log_view.txt").is_file():
             result["log"] = parse_log_view((folder / "log_view.txt").read_text())
         if self.verbose:

@@ -84,6 +84,8 @@ def check(out):
     par = read_csv(out / "parallel.csv")
     if any(number(r["stage_solve"]) is None for r in par):
         fail("parallel.csv: a run lacks the -log_view Solve stage time")
+    if any(r["ranks"] == "1" and not number(r["shared_wall_time"], 0.0) > 0 for r in par):
+        fail("parallel.csv: a 1-rank run lacks the wall time of its two copies run at once")
     if not read_csv(out / "parallel_events.csv"):
         fail("parallel_events.csv is empty")
     for r in read_csv(out / "scaling.csv"):
