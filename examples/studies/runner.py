@@ -86,7 +86,8 @@ class Runner:
         if refine > self.finest(scene):
             return [{"study": study, "tag": tag, "scene": scene, "refine": refine,
                      "ranks": ranks, "dt": dt, "exit_code": None, "timed_out": False,
-                     "elapsed": 0.0, "folder": None, "summary": None, "skipped": True}] * copies
+                     "elapsed": 0.0, "folder": None, "summary": None, "skipped": True}
+                    for _ in range(copies)]
         tags = [tag] + [f"{tag}-copy{k}" for k in range(2, copies + 1)]
         # Open MPI binds a 1-rank job to core 0: copies must be free to run on the other cores.
         binding = ["--bind-to", "none"] if copies > 1 else []
