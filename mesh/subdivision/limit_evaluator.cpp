@@ -65,22 +65,24 @@ namespace {
 
 /// The 4×4 one-ring grid of a face whose corners all have valence 4, or false if the one-ring
 /// is not a regular grid.
-bool regular_grid(const QuadMesh& mesh, const QuadAdjacency& adj,
-                  const std::map<std::pair<int, int>, std::pair<int, int>>& edge_face, int face,
+bool regular_grid(const QuadMesh& mesh, const QuadAdjacency& adj, int face,
                   std::array<int, 16>& grid) {
   const Quad& F = mesh.quads[face];
   for (int v : F)
     if (adj.valence(v) != 4 || adj.on_boundary(v)) return false;
-  // For the directed edge a→b, the face across read as [b, a, x, y]: x is one step outward
-  // from a, y from b.
+  // For the directed edge a→b, the face across (the one with edge b→a, among b's few faces)
+  // read as [b, a, x, y]: x is one step outward from a, y from b.
   auto across = [&](int a, int b, int& x, int& y) {
-    auto it = edge_face.find({b, a});
-    if (it == edge_face.end()) return false;
-    const Quad& G = mesh.quads[it->second.first];
-    const int m = it->second.second;  // G[m] = b, G[m+1] = a
-    x = G[(m + 2) % 4];
-    y = G[(m + 3) % 4];
-    return true;
+    for (int g : adj.vertex_faces(b)) {
+      const Quad& G = mesh.quads[g];
+      for (int m = 0; m < 4; ++m)
+        if (G[m] == b && G[(m + 1) % 4] == a) {
+          x = G[(m + 2) % 4];
+          y = G[(m + 3) % 4];
+          return true;
+        }
+    }
+    return false;
   };
   grid.fill(-1);
   for (int r = 0; r < 4; ++r) {
@@ -112,11 +114,8 @@ bool regular_grid(const QuadMesh& mesh, const QuadAdjacency& adj,
 LimitEvaluator::LimitEvaluator(const QuadMesh& mesh)
     : mesh_(mesh), regular_(mesh.num_faces(), 0), grid_(mesh.num_faces()) {
   const QuadAdjacency adj(mesh);
-  std::map<std::pair<int, int>, std::pair<int, int>> edge_face;
   for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int k = 0; k < 4; ++k) edge_face[{mesh.quads[f][k], mesh.quads[f][(k + 1) % 4]}] = {f, k};
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    if (!mesh.is_ghost(f)) regular_[f] = regular_grid(mesh, adj, edge_face, f, grid_[f]);
+    if (!mesh.is_ghost(f)) regular_[f] = regular_grid(mesh, adj, f, grid_[f]);
 }
 
 LimitEvaluator::~LimitEvaluator() = default;
@@ -127,7 +126,9 @@ int LimitEvaluator::num_irregular_faces() const {
   return n;
 }
 
-std::vector<PointBasis> LimitEvaluator::evaluate(const std::vector<SurfacePoint>& points) const {
+std::vector<PointBasis> LimitEvaluator::evaluate(const std::vector<SurfacePoint>& points,
+                                                 BasisSlots slots) const {
+  const int num_slots = slots == BasisSlots::kAll ? 6 : 1;
   std::vector<PointBasis> out(points.size());
   std::vector<size_t> irregular;
   std::array<std::array<double, 16>, 6> w;
@@ -142,7 +143,7 @@ std::vector<PointBasis> LimitEvaluator::evaluate(const std::vector<SurfacePoint>
     bicubic_bspline_basis(sp.u, sp.v, w);
     PointBasis& b = out[p];
     b.nodes.assign(grid_[sp.face].begin(), grid_[sp.face].end());
-    for (int d = 0; d < 6; ++d) b.w[d].assign(w[d].begin(), w[d].end());
+    for (int d = 0; d < num_slots; ++d) b.w[d].assign(w[d].begin(), w[d].end());
   }
   if (irregular.empty()) return out;
 
@@ -179,8 +180,8 @@ std::vector<PointBasis> LimitEvaluator::evaluate(const std::vector<SurfacePoint>
     locations[k].t = &t[k];
   }
   Factory::Options options;
-  options.generate1stDerivatives = true;
-  options.generate2ndDerivatives = true;
+  options.generate1stDerivatives = num_slots > 1;
+  options.generate2ndDerivatives = num_slots > 1;
   std::unique_ptr<const Far::LimitStencilTableReal<double>> table(
       Factory::Create(*osd_->refiner, locations, nullptr, nullptr, options));
   if (!table || table->GetNumStencils() != static_cast<int>(irregular.size()))
@@ -197,12 +198,12 @@ std::vector<PointBasis> LimitEvaluator::evaluate(const std::vector<SurfacePoint>
     std::map<int, std::array<double, 6>> merged;
     for (int e = offsets[k]; e < offsets[k] + sizes[k]; ++e) {
       auto& slot = merged[idx[e]];
-      for (int d = 0; d < 6; ++d) slot[d] += (*weights[d])[e];
+      for (int d = 0; d < num_slots; ++d) slot[d] += (*weights[d])[e];
     }
     for (const auto& [node, ws] : merged) {
       if (std::all_of(ws.begin(), ws.end(), [](double x) { return x == 0.0; })) continue;
       b.nodes.push_back(node);
-      for (int d = 0; d < 6; ++d) b.w[d].push_back(ws[d]);
+      for (int d = 0; d < num_slots; ++d) b.w[d].push_back(ws[d]);
     }
   }
   return out;

@@ -7,9 +7,10 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
+#include <algorithm>
 #include <cmath>
-#include <map>
 #include <memory>
+#include <utility>
 
 #include "reverse_subdivision.hpp"
 
@@ -21,12 +22,24 @@ namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
 
 /// A refined point as a sparse combination of the previous level's points (PrimvarRefiner
-/// buffer type). Rules may add already computed child points, so rows compose.
+/// buffer type). Rules may add already computed child points, so rows compose. A row has a
+/// few dozen terms at most, so a linear search beats a map; sorted() orders them by point.
 struct SparseRow {
-  std::map<int, double> weights;
+  std::vector<std::pair<int, double>> weights;
   void Clear() { weights.clear(); }
   void AddWithWeight(const SparseRow& src, double w) {
-    for (const auto& [i, x] : src.weights) weights[i] += w * x;
+    for (const auto& [i, x] : src.weights) {
+      auto it = std::find_if(weights.begin(), weights.end(),
+                             [i = i](const std::pair<int, double>& t) { return t.first == i; });
+      if (it == weights.end())
+        weights.emplace_back(i, w * x);
+      else
+        it->second += w * x;
+    }
+  }
+  const std::vector<std::pair<int, double>>& sorted() {
+    std::sort(weights.begin(), weights.end());
+    return weights;
   }
 };
 
@@ -106,7 +119,7 @@ SubdivisionHierarchy::SubdivisionHierarchy(const QuadMesh& cage, int refinements
       for (int c : coarse.GetFaceChildFaces(f)) fine_interior[c] = 1;
     }
     std::vector<SparseRow> src(current.num_points()), dst(fine.GetNumVertices());
-    for (int i = 0; i < current.num_points(); ++i) src[i].weights[i] = 1.0;
+    for (int i = 0; i < current.num_points(); ++i) src[i].weights.emplace_back(i, 1.0);
     Far::PrimvarRefinerReal<double>(*refiner).Interpolate(1, src, dst);
 
     const auto keep = kept_faces(fine_quads, fine_interior, fine.GetNumVertices());
@@ -122,7 +135,7 @@ SubdivisionHierarchy::SubdivisionHierarchy(const QuadMesh& cage, int refinements
         if (remap[v] < 0) {
           remap[v] = next.num_points();
           Point3 p = Point3::Zero();
-          for (const auto& [i, w] : dst[v].weights) {
+          for (const auto& [i, w] : dst[v].sorted()) {
             p += w * current.points[i];
             triplets.emplace_back(remap[v], i, w);
           }

@@ -24,12 +24,13 @@ std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretiz
   std::vector<int> nodes;
   std::vector<double> weights;
   const auto& X = disc.mesh().points;
-  // In chunks: a PointBasis holds all six derivative slots, and only the values are kept.
+  // In chunks, values only: every rank samples the whole surface (DistributedSampling keeps its
+  // slice), so this is replicated work.
   constexpr size_t kChunk = 4096;
   for (size_t first = 0; first < pts.size(); first += kChunk) {
     const std::vector<SurfacePoint> chunk(pts.begin() + first,
                                           pts.begin() + std::min(pts.size(), first + kChunk));
-    for (const PointBasis& b : disc.evaluator().evaluate(chunk)) {
+    for (const PointBasis& b : disc.evaluator().evaluate(chunk, BasisSlots::kValueOnly)) {
       const Point3 x = b.apply(kValue, X);
       reference.insert(reference.end(), {x[0], x[1], x[2]});
       nodes.insert(nodes.end(), b.nodes.begin(), b.nodes.end());

@@ -33,7 +33,7 @@ PenaltyScale PenaltyScale::of(const MaterialSpec& material, const SubdivisionDis
       for (double u : {0.0, 1.0})
         for (double v : {0.0, 1.0}) corners.push_back({f, u, v});
   Point3 lo = Point3::Constant(INFINITY), hi = Point3::Constant(-INFINITY);
-  for (const PointBasis& b : disc.evaluator().evaluate(corners)) {
+  for (const PointBasis& b : disc.evaluator().evaluate(corners, BasisSlots::kValueOnly)) {
     const Point3 x = b.apply(kValue, disc.mesh().points);
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
@@ -187,8 +187,7 @@ std::unique_ptr<EnergyTerm> penalty_term(const std::string& name,
 std::unique_ptr<LevelProblem> build_level_problem(const Scene& scene,
                                                   const SubdivisionDiscretization& disc,
                                                   const ParallelLayout& layout,
-                                                  const CageFrame& frame,
-                                                  double penalty_mesh_size,
+                                                  const CageFrame& frame, double penalty_mesh_size,
                                                   const PenaltyScale* penalty_scale) {
   auto problem = std::make_unique<LevelProblem>(layout);
   problem->add_term(std::make_unique<ShellElasticTerm>(disc, layout, scene.material));

@@ -28,7 +28,13 @@ struct SurfacePoint {
 /// Derivative slots of PointBasis::w.
 enum BasisDerivative { kValue = 0, kDu = 1, kDv = 2, kDuu = 3, kDuv = 4, kDvv = 5 };
 
-/// Basis functions at one point: Σ_i w[d][i] q_{nodes[i]} is the d-th derivative of x.
+/// Which derivative slots LimitEvaluator::evaluate fills: all six, or the values alone (output
+/// sampling and bounding boxes need no derivatives, and skipping them skips five allocations
+/// and the derivative stencils per point).
+enum class BasisSlots { kAll, kValueOnly };
+
+/// Basis functions at one point: Σ_i w[d][i] q_{nodes[i]} is the d-th derivative of x (slots
+/// left empty when evaluated with BasisSlots::kValueOnly).
 struct PointBasis {
   std::vector<int> nodes;
   std::array<std::vector<double>, 6> w;
@@ -55,7 +61,8 @@ class LimitEvaluator {
   const std::array<int, 16>& regular_nodes(int face) const { return grid_[face]; }
   /// Basis at many points at once (faces touching extraordinary vertices are batched into one
   /// OpenSubdiv call). Only interior faces may be evaluated.
-  std::vector<PointBasis> evaluate(const std::vector<SurfacePoint>& points) const;
+  std::vector<PointBasis> evaluate(const std::vector<SurfacePoint>& points,
+                                   BasisSlots slots = BasisSlots::kAll) const;
   /// Number of interior faces touching an extraordinary vertex.
   int num_irregular_faces() const;
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "mlshell/subdivision/subdivision_discretization.hpp"
@@ -121,6 +122,36 @@ TEST(Subdivision, LimitStencilsAreSmoothAcrossRegularAndIrregularFaces) {
         ++checked;
       }
     EXPECT_GT(checked, 10);
+  }
+}
+
+TEST(Subdivision, ValueOnlyEvaluationGivesTheSameValueWeights) {
+  // Output sampling and bounding boxes evaluate values only: the same nodes and value weights
+  // as the full evaluation (to round-off on faces at an extraordinary vertex, whose OpenSubdiv
+  // stencils are then built without derivatives), and no derivative slots.
+  for (int valence : {4, 5}) {
+    const QuadMesh mesh = SubdivisionHierarchy(add_ghost_ring(fan_cage(valence)), 1).finest();
+    const SubdivisionDiscretization d(mesh, 3);
+    std::vector<SurfacePoint> points;
+    for (int f : d.elements())
+      for (double u : {0.0, 0.3, 1.0}) points.push_back({f, u, 1.0 - 0.6 * u});
+    const auto all = d.evaluator().evaluate(points);
+    const auto values = d.evaluator().evaluate(points, BasisSlots::kValueOnly);
+    ASSERT_EQ(values.size(), points.size());
+    int irregular = 0;
+    for (size_t p = 0; p < points.size(); ++p) {
+      irregular += !d.evaluator().is_regular(points[p].face) ? 1 : 0;
+      for (int s = kDu; s <= kDvv; ++s) EXPECT_TRUE(values[p].w[s].empty());
+      const Point3 x = all[p].apply(kValue, mesh.points), y = values[p].apply(kValue, mesh.points);
+      EXPECT_LT((x - y).norm(), 1e-14) << "valence " << valence << " point " << p;
+      std::map<int, double> a, b;
+      for (int i = 0; i < all[p].size(); ++i) a[all[p].nodes[i]] += all[p].w[kValue][i];
+      for (int i = 0; i < values[p].size(); ++i) b[values[p].nodes[i]] += values[p].w[kValue][i];
+      for (const auto& [node, w] : a) EXPECT_NEAR(b[node], w, 1e-14) << "node " << node;
+      for (const auto& [node, w] : b) EXPECT_NEAR(a[node], w, 1e-14) << "node " << node;
+    }
+    EXPECT_GT(irregular, 0) << "valence " << valence;  // both code paths
+    EXPECT_LT(irregular, static_cast<int>(points.size())) << "valence " << valence;
   }
 }
 
