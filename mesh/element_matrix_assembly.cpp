@@ -2,6 +2,7 @@
 #include "mlshell/element_matrix_assembly.hpp"
 
 #include <algorithm>
+#include <memory>
 
 namespace mlshell {
 
@@ -71,24 +72,78 @@ inline PetscInt find_block(const PetscInt* row, PetscInt nb, PetscInt column) {
 
 }  // namespace
 
-PetscErrorCode prefill_block_pattern(Mat A, const std::vector<std::vector<int>>& columns,
-                                     const std::vector<PetscInt>& block_of_local) {
+namespace {
+
+/// CSR arrays of one SeqAIJ part, kept alive by the matrix that uses them.
+struct CsrArrays {
+  std::vector<PetscInt> i, j;
+  std::vector<PetscScalar> a;
+};
+
+PetscErrorCode destroy_csr(void* ctx) {
+  delete static_cast<CsrArrays*>(ctx);
+  return 0;
+}
+
+/// Composes `arrays` on `part` (the matrix whose storage they are): freed with it.
+PetscErrorCode give_arrays(Mat part, CsrArrays* arrays) {
   PetscFunctionBeginUser;
-  PetscInt rstart;
-  PetscCall(MatGetOwnershipRange(A, &rstart, nullptr));
-  const PetscInt first = rstart / 3, num_owned = static_cast<PetscInt>(columns.size());
-  std::vector<PetscInt> cols;
-  std::vector<PetscScalar> zeros;
-  for (PetscInt i = 0; i < num_owned; ++i) {
-    const PetscInt row = first + i;
-    cols.assign(columns[i].begin(), columns[i].end());
-    zeros.assign(9 * cols.size(), 0.0);
-    PetscCall(MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(),
-                                  zeros.data(), INSERT_VALUES));
+  PetscContainer container;
+  PetscCall(PetscContainerCreate(PETSC_COMM_SELF, &container));
+  PetscCall(PetscContainerSetPointer(container, arrays));
+  PetscCall(PetscContainerSetUserDestroy(container, destroy_csr));
+  PetscCall(PetscObjectCompose((PetscObject)part, "mlshell_csr_arrays", (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode create_prefilled_block_matrix(MPI_Comm comm, PetscInt first_owned,
+                                             const std::vector<std::vector<int>>& columns,
+                                             const std::vector<PetscInt>& block_of_local, Mat* A) {
+  PetscFunctionBeginUser;
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  const PetscInt num_owned = static_cast<PetscInt>(columns.size()), m = 3 * num_owned;
+  const PetscInt last = first_owned + num_owned;
+  // Scalar rows 3i..3i+2 of block row i share its block columns, each expanded to three;
+  // the diagonal part numbers its columns from the first owned one, the other part globally.
+  auto diag = std::make_unique<CsrArrays>(), off = std::make_unique<CsrArrays>();
+  PetscInt nd = 0, no = 0;
+  for (const auto& c : columns)
+    for (int b : c) (b >= first_owned && b < last ? nd : no) += 9;
+  diag->i.reserve(m + 1), diag->j.reserve(nd), off->i.reserve(m + 1), off->j.reserve(no);
+  diag->i.push_back(0), off->i.push_back(0);
+  for (PetscInt r = 0; r < num_owned; ++r)
+    for (int c = 0; c < 3; ++c) {
+      for (int b : columns[r])
+        for (PetscInt k = 0; k < 3; ++k) {
+          if (b >= first_owned && b < last)
+            diag->j.push_back(3 * (b - first_owned) + k);
+          else
+            off->j.push_back(3 * static_cast<PetscInt>(b) + k);
+        }
+      diag->i.push_back(static_cast<PetscInt>(diag->j.size()));
+      off->i.push_back(static_cast<PetscInt>(off->j.size()));
+    }
+  diag->a.assign(diag->j.size(), 0.0);
+  off->a.assign(off->j.size(), 0.0);
+  if (size == 1) {
+    PetscCall(
+        MatCreateSeqAIJWithArrays(comm, m, m, diag->i.data(), diag->j.data(), diag->a.data(), A));
+    PetscCall(give_arrays(*A, diag.release()));
+  } else {
+    PetscCall(MatCreateMPIAIJWithSplitArrays(comm, m, m, PETSC_DETERMINE, PETSC_DETERMINE,
+                                             diag->i.data(), diag->j.data(), diag->a.data(),
+                                             off->i.data(), off->j.data(), off->a.data(), A));
+    Mat parts[2];
+    PetscCall(MatMPIAIJGetSeqAIJ(*A, &parts[0], &parts[1], nullptr));
+    PetscCall(give_arrays(parts[0], diag.release()));
+    PetscCall(give_arrays(parts[1], off.release()));
   }
-  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(attach_block_columns(A, block_of_local));
+  PetscCall(MatSetBlockSize(*A, 3));
+  PetscCall(attach_block_columns(*A, block_of_local));
   PetscFunctionReturn(0);
 }
 

@@ -176,16 +176,9 @@ std::shared_ptr<const ParallelLayout::BlockPattern> ParallelLayout::block_patter
     if (owned_index[a] >= 0) coupled[owned_index[a]].push_back(petsc_of_natural_[b]);
     if (owned_index[b] >= 0) coupled[owned_index[b]].push_back(petsc_of_natural_[a]);
   }
-  p->dnnz.assign(num_owned_, 0);
-  p->onnz.assign(num_owned_, 0);
-  for (int i = 0; i < num_owned_; ++i) {
-    auto& c = coupled[i];
+  for (auto& c : coupled) {
     std::sort(c.begin(), c.end());
     c.erase(std::unique(c.begin(), c.end()), c.end());
-    for (int col : c) {
-      const bool diag = col >= first_owned_ && col < first_owned_ + num_owned_;
-      (diag ? p->dnnz[i] : p->onnz[i])++;
-    }
   }
   pattern_ = std::move(p);
   return pattern_;
@@ -197,17 +190,15 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
   const auto pattern = block_pattern(extra);
   const bool duplicate = first_matrix_ && first_pattern_ == pattern;
   if (duplicate) {
-    // The pattern of an earlier matrix, shared (its row and column indices are not copied).
+    // The pattern of an earlier matrix: PETSc 3.18's SeqAIJ copies its row and column indices
+    // (MAT_SHARE_NONZERO_PATTERN or not), which is still cheaper than building them.
     PetscCall(MatDuplicate(first_matrix_, MAT_SHARE_NONZERO_PATTERN, A));
     PetscCall(MatZeroEntries(*A));
     PetscCall(attach_block_columns(*A, vertex_patches()->blocks));
   } else {
-    PetscCall(MatCreate(comm_, A));
-    PetscCall(MatSetSizes(*A, 3 * num_owned_, 3 * num_owned_, PETSC_DETERMINE, PETSC_DETERMINE));
-    PetscCall(MatSetType(*A, MATAIJ));
-    PetscCall(MatSetBlockSize(*A, 3));
-    PetscCall(MatXAIJSetPreallocation(*A, 3, pattern->dnnz.data(), pattern->onnz.data(), nullptr,
-                                      nullptr));
+    // Every element block is in the pattern from the start: add_element_matrix's fast path.
+    PetscCall(create_prefilled_block_matrix(comm_, first_owned_, pattern->columns,
+                                            vertex_patches()->blocks, A));
   }
   PetscCall(MatSetLocalToGlobalMapping(*A, l2g_, l2g_));
   PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
@@ -222,10 +213,7 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
   PetscCall(VecDestroy(&coordinates));
   PetscCall(attach_vertex_patches(*A, vertex_patches()));
   if (!duplicate) {
-    // Every element block is in the pattern from the start: add_element_matrix's fast path.
-    PetscCall(prefill_block_pattern(*A, pattern->columns, vertex_patches()->blocks));
-    // Later matrices of this pattern duplicate this one's structure: prefilling costs about a
-    // third of a Hessian assembly.
+    // Later matrices of this pattern duplicate this one's structure.
     PetscCall(MatDestroy(&first_matrix_));
     PetscCall(PetscObjectReference((PetscObject)*A));
     first_matrix_ = *A;

@@ -83,7 +83,6 @@ class ParallelLayout {
   struct BlockPattern {
     std::vector<std::array<int, 2>> extra;
     std::vector<std::vector<int>> columns;
-    std::vector<PetscInt> dnnz, onnz;
   };
   mutable std::shared_ptr<const BlockPattern> pattern_;
   /// The first matrix made with the current pattern (a reference: it may outlive its maker);
