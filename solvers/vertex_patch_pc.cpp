@@ -115,59 +115,40 @@ PetscErrorCode destroy(PC pc) {
   PetscFunctionReturn(0);
 }
 
-/// Cholesky factor of the symmetric m × m matrix A (column-major; its lower triangle is read)
-/// into L, packed by rows: L[i(i+1)/2 + j], j ≤ i. False if a pivot is not positive.
-bool cholesky_packed(const double* A, int m, double* L) {
-  for (int i = 0; i < m; ++i) {
-    double* Li = L + i * (i + 1) / 2;
-    for (int j = 0; j <= i; ++j) {
-      const double* Lj = L + j * (j + 1) / 2;
-      const double s = A[i + j * m] - Eigen::Map<const Eigen::VectorXd>(Li, j).dot(
-                                          Eigen::Map<const Eigen::VectorXd>(Lj, j));
-      if (j < i) {
-        Li[j] = s / Lj[j];
-      } else {
-        if (!(s > 0.0) || !std::isfinite(s)) return false;
-        Li[i] = std::sqrt(s);
-      }
-    }
-  }
+/// L⁻¹ for the Cholesky factor L L^T = A of the symmetric m × m matrix A (its lower triangle is
+/// read), packed by rows into `Linv`: Linv[i(i+1)/2 + j], j ≤ i. `L` and `inverse` are
+/// workspace. False if A is not positive definite (a pivot is not positive, or not finite).
+bool inverse_cholesky_packed(const Eigen::MatrixXd& A, Eigen::MatrixXd& L, Eigen::MatrixXd& inverse,
+                             double* Linv) {
+  const int m = static_cast<int>(A.rows());
+  L = A;
+  const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(L);
+  // Eigen's LLT stops at a pivot ≤ 0; a NaN pivot passes that test and shows on the diagonal.
+  if (llt.info() != Eigen::Success || !L.diagonal().allFinite()) return false;
+  inverse.setIdentity(m, m);
+  L.triangularView<Eigen::Lower>().solveInPlace(inverse);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j <= i; ++j) Linv[i * (i + 1) / 2 + j] = inverse(i, j);
   return true;
 }
 
-/// Factor of |A| for one symmetric patch matrix into `L` (cholesky_packed's layout): A's own
-/// where A is positive definite, else that of its spectral absolute value with eigenvalues
-/// floored at 1e-12 of the largest. Returns 1 if A was not positive definite, -1 if A is not
-/// finite.
-int factor_patch(Eigen::MatrixXd& A, double* L) {
+/// Packed L⁻¹ (inverse_cholesky_packed's layout) for |A| of one symmetric patch matrix: A's own
+/// factor where A is positive definite, else that of its spectral absolute value with
+/// eigenvalues floored at 1e-12 of the largest. Returns 1 if A was not positive definite, -1 if
+/// A is not finite.
+int factor_patch(Eigen::MatrixXd& A, Eigen::MatrixXd& L, Eigen::MatrixXd& inverse, double* Linv) {
   const int m = static_cast<int>(A.rows());
-  if (cholesky_packed(A.data(), m, L)) return 0;
+  if (inverse_cholesky_packed(A, L, inverse, Linv)) return 0;
   if (!A.allFinite()) return -1;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A);
   Eigen::VectorXd lambda = es.eigenvalues().cwiseAbs();
   const double floor = std::max(1e-12 * lambda.maxCoeff(), std::numeric_limits<double>::min());
   for (int k = 0; k < m; ++k) lambda[k] = std::max(lambda[k], floor);
   A = es.eigenvectors() * lambda.asDiagonal() * es.eigenvectors().transpose();
-  return cholesky_packed(A.data(), m, L) ? 1 : -1;
+  return inverse_cholesky_packed(A, L, inverse, Linv) ? 1 : -1;
 }
 
-/// Replaces a factor packed by cholesky_packed by L⁻¹, in the same layout (`work`: m² doubles).
-void invert_lower_packed(double* L, int m, double* work) {
-  // Column j of L⁻¹ solves L x = e_j (x_i = 0 for i < j); L is read until the last column.
-  for (int j = 0; j < m; ++j) {
-    double* x = work + static_cast<std::size_t>(j) * m;
-    for (int i = j; i < m; ++i) {
-      const double* Li = L + i * (i + 1) / 2;
-      double s = i == j ? 1.0 : 0.0;
-      for (int k = j; k < i; ++k) s -= Li[k] * x[k];
-      x[i] = s / Li[i];
-    }
-  }
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j <= i; ++j) L[i * (i + 1) / 2 + j] = work[static_cast<std::size_t>(j) * m + i];
-}
-
-/// z = M⁻ᵀ M⁻¹ r for M⁻¹ packed by rows (invert_lower_packed), in one pass over M⁻¹: row i
+/// z = M⁻ᵀ M⁻¹ r for M⁻¹ packed by rows (inverse_cholesky_packed), in one pass over M⁻¹: row i
 /// gives y_i = (M⁻¹ r)_i and adds y_i times itself to z = M⁻ᵀ y while it is in cache (the
 /// factors of all patches exceed the caches, so the pass is bound by memory traffic).
 void solve_packed(const double* Minv, int m, const double* r, double* z) {
@@ -186,6 +167,7 @@ void extract_patch(const VertexPatchPc& p, const std::vector<int>& patch, Eigen:
   const int k = static_cast<int>(patch.size()),
             num_owned = static_cast<int>(p.patches->patches.size());
   D.setZero(3 * k, 3 * k);
+  // Scalar row r of `rows` into row a of D, entry by entry.
   auto add_row = [&](const MappedRows& rows, PetscInt r, int a) {
     for (PetscInt e = rows.ia[r]; e < rows.ia[r + 1]; ++e) {
       const int dof = rows.column_dof[rows.ja[e]];
@@ -194,16 +176,42 @@ void extract_patch(const VertexPatchPc& p, const std::vector<int>& patch, Eigen:
       if (b >= 0) D(a, 3 * b + dof % 3) = rows.values[e];
     }
   };
+  // Block row r (scalar rows 3r..3r+2) into row block a of D. Rows of mlshell's Hessians store
+  // full 3 × 3 blocks (element_matrix_assembly.cpp), and so do the ghost rows taken from them:
+  // one column lookup per block instead of per entry (the lookups into column_dof and slot
+  // were most of the setup). Rows that do not have that structure are read entry by entry.
+  auto add_block_row = [&](const MappedRows& rows, PetscInt r, int a) {
+    const PetscInt* ia = rows.ia + 3 * r;
+    const PetscInt len = ia[1] - ia[0];
+    bool blocked = len % 3 == 0 && ia[2] - ia[1] == len && ia[3] - ia[2] == len;
+    // Every column map here sends columns 3j, 3j + 1, 3j + 2 to components 0, 1, 2 of a point.
+    for (PetscInt e = 0; blocked && e < len; e += 3) {
+      const PetscInt col = rows.ja[ia[0] + e];
+      blocked = col % 3 == 0;
+      for (int c = 0; blocked && c < 3; ++c)
+        blocked = rows.ja[ia[c] + e] == col && rows.ja[ia[c] + e + 2] == col + 2;
+    }
+    if (!blocked) {
+      for (int c = 0; c < 3; ++c) add_row(rows, 3 * r + c, 3 * a + c);
+      return;
+    }
+    for (PetscInt e = 0; e < len; e += 3) {
+      const int dof = rows.column_dof[rows.ja[ia[0] + e]];
+      if (dof < 0) continue;
+      const int b = p.slot[dof / 3];
+      if (b < 0) continue;
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d) D(3 * a + c, 3 * b + d) = rows.values[ia[c] + e + d];
+    }
+  };
   for (int a = 0; a < k; ++a) {
     const int q = patch[a];
-    for (int c = 0; c < 3; ++c) {
-      const PetscInt r = 3 * static_cast<PetscInt>(p.row[q]) + c;
-      if (q < num_owned) {
-        add_row(p.diagonal, r, 3 * a + c);
-        if (p.off_diagonal.mat) add_row(p.off_diagonal, r, 3 * a + c);
-      } else {
-        add_row(p.ghost, r, 3 * a + c);
-      }
+    const PetscInt r = p.row[q];
+    if (q < num_owned) {
+      add_block_row(p.diagonal, r, a);
+      if (p.off_diagonal.mat) add_block_row(p.off_diagonal, r, a);
+    } else {
+      add_block_row(p.ghost, r, a);
     }
   }
 }
@@ -312,8 +320,7 @@ PetscErrorCode setup(PC pc) {
   if (off_diagonal) PetscCall(p->off_diagonal.open(off_diagonal));
   // Each patch matrix, then its inverse factor.
   p->shifted = 0;
-  Eigen::MatrixXd D;
-  std::vector<double> work;
+  Eigen::MatrixXd D, L, inverse;
   long bad = -1;  // the first patch that is not finite
   for (std::size_t i = 0; i < patches->patches.size() && bad < 0; ++i) {
     const auto& patch = patches->patches[i];
@@ -324,11 +331,7 @@ PetscErrorCode setup(PC pc) {
     // The patch matrix is symmetric up to round-off: symmetrise (in place, no temporary).
     for (int j = 0; j < m; ++j)
       for (int r = j + 1; r < m; ++r) D(r, j) = D(j, r) = 0.5 * (D(r, j) + D(j, r));
-    const int kind = factor_patch(D, p->factor.get() + p->offset[i]);
-    if (kind >= 0) {
-      work.resize(static_cast<std::size_t>(m) * m);
-      invert_lower_packed(p->factor.get() + p->offset[i], m, work.data());
-    }
+    const int kind = factor_patch(D, L, inverse, p->factor.get() + p->offset[i]);
     if (kind < 0) bad = static_cast<long>(i);
     p->shifted += kind > 0;
   }
