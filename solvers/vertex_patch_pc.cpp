@@ -178,31 +178,30 @@ void extract_patch(const VertexPatchPc& p, const std::vector<int>& patch, Eigen:
   };
   // Block row r (scalar rows 3r..3r+2) into row block a of D. Rows of mlshell's Hessians store
   // full 3 × 3 blocks (element_matrix_assembly.cpp), and so do the ghost rows taken from them:
-  // one column lookup per block instead of per entry (the lookups into column_dof and slot
-  // were most of the setup). Rows that do not have that structure are read entry by entry.
+  // one slot lookup per block instead of per entry (the per-entry lookups were most of the
+  // setup). A block is read whole only if its three rows hold the same three consecutive
+  // columns and those are components 0, 1, 2 of one point (or of none here); otherwise the rows
+  // are read entry by entry, which rewrites any block already read with the same values.
   auto add_block_row = [&](const MappedRows& rows, PetscInt r, int a) {
     const PetscInt* ia = rows.ia + 3 * r;
     const PetscInt len = ia[1] - ia[0];
     bool blocked = len % 3 == 0 && ia[2] - ia[1] == len && ia[3] - ia[2] == len;
-    // Every column map here sends columns 3j, 3j + 1, 3j + 2 to components 0, 1, 2 of a point.
     for (PetscInt e = 0; blocked && e < len; e += 3) {
       const PetscInt col = rows.ja[ia[0] + e];
-      blocked = col % 3 == 0;
       for (int c = 0; blocked && c < 3; ++c)
         blocked = rows.ja[ia[c] + e] == col && rows.ja[ia[c] + e + 2] == col + 2;
-    }
-    if (!blocked) {
-      for (int c = 0; c < 3; ++c) add_row(rows, 3 * r + c, 3 * a + c);
-      return;
-    }
-    for (PetscInt e = 0; e < len; e += 3) {
-      const int dof = rows.column_dof[rows.ja[ia[0] + e]];
-      if (dof < 0) continue;
+      const int dof = blocked ? rows.column_dof[col] : -1;
+      blocked = blocked && (dof < 0 ? rows.column_dof[col + 1] < 0 && rows.column_dof[col + 2] < 0
+                                    : dof % 3 == 0 && rows.column_dof[col + 1] == dof + 1 &&
+                                          rows.column_dof[col + 2] == dof + 2);
+      if (!blocked || dof < 0) continue;
       const int b = p.slot[dof / 3];
       if (b < 0) continue;
       for (int c = 0; c < 3; ++c)
         for (int d = 0; d < 3; ++d) D(3 * a + c, 3 * b + d) = rows.values[ia[c] + e + d];
     }
+    if (!blocked)
+      for (int c = 0; c < 3; ++c) add_row(rows, 3 * r + c, 3 * a + c);
   };
   for (int a = 0; a < k; ++a) {
     const int q = patch[a];
