@@ -70,7 +70,8 @@ class LevelProblem final : public Objective {
   PetscErrorCode update_multipliers(Vec u, bool* met);
   /// Where the material points of the elastic term lie in the material model at u (all ranks).
   PetscErrorCode material_report(Vec u, MaterialReport& report);
-  /// Energy of each term, the total f(u) and ‖∇f(u)‖₂ at u (for reports).
+  /// Energy of each term, their sum f(u) and ‖∇f(u)‖₂ at u, in one pass (for reports; not
+  /// counted in objective_evaluations()).
   PetscErrorCode report(Vec u, std::vector<double>& energies, PetscReal* total, PetscReal* gnorm);
 
   /// Every term's per-element output fields at u, in natural face order, on rank 0 (on the
