@@ -159,6 +159,43 @@ INSTANTIATE_TEST_SUITE_P(Effects, AssembledDerivatives,
                          ::testing::Values("elastic_denim", "elastic_svk", "inertia", "loads",
                                            "dirichlet", "clamp", "extraordinary"));
 
+// The report (summary.json, -mlshell_evaluate) makes one pass of its own: its energies are
+// those of each term, their sum the objective, its gradient norm the objective's.
+void expect_report_matches_objective(MPI_Comm comm) {
+  TestProblem tp("all", comm);
+  Vec u, g;
+  tp.layout->create_vector(&u);
+  VecDuplicate(u, &g);
+  tp.random_state(u, 2e-2, 5);
+  PetscReal f, gnorm, total, reported_gnorm;
+  tp.problem->objective(u, &f, g);
+  VecNorm(g, NORM_2, &gnorm);
+  std::vector<double> energies, separate;
+  const long evaluations = tp.problem->objective_evaluations();
+  ASSERT_EQ(tp.problem->report(u, energies, &total, &reported_gnorm), 0);
+  EXPECT_EQ(tp.problem->objective_evaluations(), evaluations);
+  ASSERT_EQ(tp.problem->term_energies(u, separate), 0);
+  ASSERT_EQ(energies.size(), separate.size());
+  double magnitude = 0.0;
+  for (size_t i = 0; i < energies.size(); ++i) {
+    EXPECT_EQ(energies[i], separate[i]) << "term " << i;
+    magnitude += std::abs(separate[i]);
+  }
+  EXPECT_GT(gnorm, 0.0);
+  EXPECT_NEAR(total, f, 1e-13 * magnitude);
+  EXPECT_NEAR(reported_gnorm, gnorm, 1e-13 * gnorm);
+  VecDestroy(&u);
+  VecDestroy(&g);
+}
+
+TEST(Report, EnergiesSumToTheObjectiveAndTheGradientIsItsGradient) {
+  expect_report_matches_objective(PETSC_COMM_SELF);
+}
+
+TEST(MpiReport, EnergiesSumToTheObjectiveAndTheGradientIsItsGradient) {
+  expect_report_matches_objective(PETSC_COMM_WORLD);
+}
+
 TEST(ClosedForm, FlatSheetAtRestHasZeroEnergyAndGradient) {
   TestProblem tp("elastic_denim", PETSC_COMM_SELF);
   Vec u, g;
