@@ -106,20 +106,20 @@ PetscErrorCode create_prefilled_block_matrix(MPI_Comm comm, PetscInt first_owned
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   const PetscInt num_owned = static_cast<PetscInt>(columns.size()), m = 3 * num_owned;
-  const PetscInt last = first_owned + num_owned;
+  const auto owned = [&](PetscInt b) { return b >= first_owned && b < first_owned + num_owned; };
   // Scalar rows 3i..3i+2 of block row i share its block columns, each expanded to three;
   // the diagonal part numbers its columns from the first owned one, the other part globally.
   auto diag = std::make_unique<CsrArrays>(), off = std::make_unique<CsrArrays>();
   PetscInt nd = 0, no = 0;
   for (const auto& c : columns)
-    for (int b : c) (b >= first_owned && b < last ? nd : no) += 9;
+    for (int b : c) (owned(b) ? nd : no) += 9;
   diag->i.reserve(m + 1), diag->j.reserve(nd), off->i.reserve(m + 1), off->j.reserve(no);
   diag->i.push_back(0), off->i.push_back(0);
   for (PetscInt r = 0; r < num_owned; ++r)
     for (int c = 0; c < 3; ++c) {
       for (int b : columns[r])
         for (PetscInt k = 0; k < 3; ++k) {
-          if (b >= first_owned && b < last)
+          if (owned(b))
             diag->j.push_back(3 * (b - first_owned) + k);
           else
             off->j.push_back(3 * static_cast<PetscInt>(b) + k);
