@@ -9,6 +9,7 @@ CoarseLevelModel::~CoarseLevelModel() {
   VecDestroy(&x0_);
   VecDestroy(&delta_g_);
   VecDestroy(&work_);
+  VecDestroy(&product_);
 }
 
 PetscErrorCode CoarseLevelModel::set_start(Vec x0) {
@@ -25,6 +26,7 @@ PetscErrorCode CoarseLevelModel::set_start(Vec x0) {
 PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, PetscReal* h0) {
   PetscFunctionBeginUser;
   PetscCall(set_start(x0));
+  galerkin_ = nullptr;
   PetscReal f0;
   PetscCall(level_.objective(x0_, &f0, delta_g_));          // ∇f(x₀)
   PetscCall(VecAYPX(delta_g_, -1.0, restricted_gradient));  // δg = R∇h_fine − ∇f(x₀)
@@ -33,9 +35,21 @@ PetscErrorCode CoarseLevelModel::initialize(Vec x0, Vec restricted_gradient, Pet
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode CoarseLevelModel::initialize_galerkin(Vec x0, Vec restricted_gradient,
+                                                     Mat galerkin) {
+  PetscFunctionBeginUser;
+  PetscCall(set_start(x0));
+  galerkin_ = galerkin;
+  if (!product_) PetscCall(VecDuplicate(x0, &product_));
+  PetscCall(VecCopy(restricted_gradient, delta_g_));  // r = R∇h_fine
+  PetscCall(VecNorm(delta_g_, NORM_2, &delta_g_norm_));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode CoarseLevelModel::set_unmodified(Vec x0) {
   PetscFunctionBeginUser;
   PetscCall(set_start(x0));
+  galerkin_ = nullptr;
   PetscCall(VecSet(delta_g_, 0.0));
   delta_g_norm_ = 0.0;
   PetscFunctionReturn(0);
@@ -51,11 +65,36 @@ PetscErrorCode CoarseLevelModel::initialize_unmodified(Vec x0, PetscReal* f0, Ve
 PetscReal CoarseLevelModel::evaluation_error() const {
   PetscReal step = 0.0;  // work_ holds x − x₀ of the last objective()
   PetscCallAbort(PetscObjectComm((PetscObject)work_), VecNorm(work_, NORM_2, &step));
+  if (galerkin_) return 8.0 * PETSC_MACHINE_EPSILON * (delta_g_norm_ + product_norm_) * step;
   return level_.evaluation_error() + 8.0 * PETSC_MACHINE_EPSILON * delta_g_norm_ * step;
+}
+
+PetscErrorCode CoarseLevelModel::hessian(Vec x, Mat H) {
+  PetscFunctionBeginUser;
+  if (!galerkin_) {
+    PetscCall(level_.hessian(x, H));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatCopy(galerkin_, H, SUBSET_NONZERO_PATTERN));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode CoarseLevelModel::objective(Vec x, PetscReal* h, Vec g) {
   PetscFunctionBeginUser;
+  if (galerkin_) {  // ⟨r, w⟩ + ½ wᵀGw and r + Gw, w = x − x₀
+    PetscCall(VecWAXPY(work_, -1.0, x0_, x));
+    PetscCall(MatMult(galerkin_, work_, product_));
+    PetscReal wr, wgw;  // one reduction for both dots and the norm
+    PetscCall(VecDotBegin(work_, delta_g_, &wr));
+    PetscCall(VecDotBegin(work_, product_, &wgw));
+    PetscCall(VecNormBegin(product_, NORM_2, &product_norm_));
+    PetscCall(VecDotEnd(work_, delta_g_, &wr));
+    PetscCall(VecDotEnd(work_, product_, &wgw));
+    PetscCall(VecNormEnd(product_, NORM_2, &product_norm_));
+    *h = wr + 0.5 * wgw;
+    if (g) PetscCall(VecWAXPY(g, 1.0, delta_g_, product_));
+    PetscFunctionReturn(0);
+  }
   PetscCall(level_.objective(x, h, g));
   PetscCall(VecWAXPY(work_, -1.0, x0_, x));  // x − x₀
   PetscReal coupling;

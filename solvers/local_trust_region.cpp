@@ -164,6 +164,14 @@ PetscErrorCode LocalTrustRegion::ensure_hessian() {
   PetscCall(qp_->set_operator(H_));
   kept_ = 0;
   hessian_due_ = false;
+  hessian_since_start_ = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalTrustRegion::model_hessian(Mat* H) {
+  PetscFunctionBeginUser;
+  if (!hessian_since_start_) PetscCall(ensure_hessian());
+  *H = H_;
   PetscFunctionReturn(0);
 }
 
@@ -171,6 +179,7 @@ PetscErrorCode LocalTrustRegion::start(Vec x, const PetscReal* f, Vec g) {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(x, x_));
   reduction_ = 0.0;
+  hessian_since_start_ = false;
   if (f && g) {
     fx_ = *f;
     PetscCall(VecCopy(g, g_));

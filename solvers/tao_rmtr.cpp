@@ -28,6 +28,11 @@
 //   -tao_rmtr_gamma2 2 -tao_rmtr_eps_delta 0.001
 //   -tao_rmtr_projection reverse|lsq|restriction   P of eq. (4.6): reverse subdivision Q,
 //        least squares (IᵀI)⁻¹Iᵀ, or restriction scaled to preserve constants (diag(R1)⁻¹R)
+//   -tao_rmtr_coarse_model first_order|galerkin   h^{l−1} of step 2: the level's own objective
+//        with the first-order consistency term (eq. 4.3, the paper), or the Galerkin model
+//        ⟨R∇h^l, w⟩ + ½ wᵀ J_Pᵀ H^l J_P w, w = x − x₀^{l−1}, with H^l the Hessian of the finer
+//        level's last subproblem (second order at x₀ whatever the projection gives; the coarse
+//        levels never evaluate their energies, CoarseLevelModel)
 //   -tao_rmtr_smoother_qp stcg|dogleg   -tao_rmtr_coarse_qp dogleg|stcg
 //   -tao_rmtr_stcg_max_it 10         STCG iterations per smoothing step
 //   -tao_rmtr_stcg_target 0.1        STCG stops once its model gradient ‖g + Hs‖ is this fraction
@@ -72,11 +77,15 @@ enum Projection { kReverse = 0, kLeastSquares = 1, kRestriction = 2 };
 const char* const kProjectionNames[] = {"reverse",    "lsq",         "restriction",
                                         "Projection", "PROJECTION_", nullptr};
 const char* const kQpNames[] = {"dogleg", "stcg", "RmtrQp", "RMTR_QP_", nullptr};
+enum CoarseModel { kFirstOrder = 0, kGalerkin = 1 };
+const char* const kCoarseModelNames[] = {"first_order", "galerkin", "CoarseModel",
+                                         "COARSE_MODEL_", nullptr};
 
 struct Level {
   Objective* objective = nullptr;           // h^l
   std::unique_ptr<CoarseLevelModel> model;  // l < L
   Mat H = nullptr;                          // owned for l < L
+  Mat galerkin = nullptr;                   // l < L, Galerkin models: J_Pᵀ ∇²h^{l+1} J_P
   std::unique_ptr<LocalTrustRegion> tr;
   Vec x0 = nullptr, restricted = nullptr;     // l < L: x₀^l and R ∇h^{l+1}
   Vec correction = nullptr, trial = nullptr;  // l > 0: prolongated correction, x + s
@@ -89,7 +98,7 @@ struct Level {
 struct RmtrContext {
   MultilevelObjective* hierarchy = nullptr;
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
-  PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0;
+  PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0, coarse_model = kFirstOrder;
   char smoother_pc[64] = "none";
   PetscInt hessian_lag = 0, fmg_cycles = 1000;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
@@ -112,6 +121,7 @@ void destroy_levels(RmtrContext& c) {
   for (Level& lv : c.levels) {
     lv.tr.reset();
     if (&lv != &c.levels.back()) MatDestroy(&lv.H);
+    MatDestroy(&lv.galerkin);
     VecDestroy(&lv.x0);
     VecDestroy(&lv.restricted);
     VecDestroy(&lv.correction);
@@ -252,8 +262,17 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
   PetscReal rg, f0;
   PetscCall(VecNorm(lc.restricted, NORM_2, &rg));
   bool attempted = false;
-  if (rg > tao->gatol) {
+  if (rg > tao->gatol && c.coarse_model == kGalerkin) {
+    Mat H;  // the level's model Hessian, as its smoother's last subproblem used it
+    PetscCall(lv.tr->model_hessian(&H));
+    PetscCall(transfer(c, l).coarse_operator(
+        lc.x0, H, lc.galerkin ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &lc.galerkin));
+    PetscCall(lc.model->initialize_galerkin(lc.x0, lc.restricted, lc.galerkin));
+    f0 = 0.0;
+  } else if (rg > tao->gatol) {
     PetscCall(lc.model->initialize(lc.x0, lc.restricted, &f0));
+  }
+  if (rg > tao->gatol) {
     PetscCall(lc.tr->start(lc.x0, &f0, lc.restricted));
     attempted = lc.tr->finite();  // a projected state outside the material's domain: skip
     if (attempted && c.check_consistency) {  // eq. (4.5): ∇h^{l−1}(x₀) = R ∇h^l
@@ -571,6 +590,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsEnum("-tao_rmtr_projection", "projection of iterates to coarser levels", "",
                              kProjectionNames, static_cast<PetscEnum>(c->projection),
                              reinterpret_cast<PetscEnum*>(&c->projection), nullptr));
+  PetscCall(PetscOptionsEnum("-tao_rmtr_coarse_model",
+                             "coarse-level model: first_order (eq. 4.3) or galerkin (J_P^T H J_P)",
+                             "", kCoarseModelNames, static_cast<PetscEnum>(c->coarse_model),
+                             reinterpret_cast<PetscEnum*>(&c->coarse_model), nullptr));
   PetscCall(
       PetscOptionsString("-tao_rmtr_smoother_pc",
                          "preconditioner of STCG above the coarsest level (none, vpatch, ...)", "",
@@ -640,11 +663,13 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
                                    "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT
                                    ", mu2 = %" PetscInt_FMT ", coarsest %" PetscInt_FMT
                                    " step(s) of %s, smoother %s (%" PetscInt_FMT " iterations "
-                                   "or a model gradient of %g gatol, PC %s), projection %s\n",
+                                   "or a model gradient of %g gatol, PC %s), projection %s, "
+                                   "%s coarse models\n",
                                    n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1,
                                    c->mu2, c->coarse_max_it, kQpNames[c->coarse_qp],
                                    kQpNames[c->smoother_qp], c->stcg_max_it, (double)c->stcg_target,
-                                   c->smoother_pc, kProjectionNames[c->projection]));
+                                   c->smoother_pc, kProjectionNames[c->projection],
+                                   kCoarseModelNames[c->coarse_model]));
   PetscCall(PetscViewerASCIIPrintf(
       viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",
       (double)c->delta0, (double)c->params.eta1, (double)c->params.eta2, (double)c->params.gamma1,

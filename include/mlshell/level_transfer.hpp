@@ -6,6 +6,7 @@
 //   prolong_direction    J_P(x₀) d                    level norms (eq. 4.9)
 //   restrict_gradient    g_c = J_P(x₀)ᵀ g_f           first-order consistency (eq. 4.4)
 //   project              x_c = Π(x_f)                 the coarse start (eq. 4.6)
+//   coarse_operator      A_c = J_P(x₀)ᵀ A_f J_P(x₀)   Galerkin coarse Hessians
 //   relative_cost        W^l / W^{l+1}                work units (eq. 7.3)
 // with x₀ the coarse start of the current coarse-level solve. A linear transfer (LinearTransfer)
 // ignores x₀: P(x) = S x, J_P = S, J_Pᵀ = R = Sᵀ.
@@ -31,6 +32,9 @@ class LevelTransfer {
   virtual PetscErrorCode restrict_gradient(Vec x0, Vec fine_gradient,
                                            Vec coarse_gradient) const = 0;
   virtual PetscErrorCode project(Vec fine, Vec coarse, Projection kind) const = 0;
+  /// J_P(x₀)ᵀ A J_P(x₀) into *coarse: created with MAT_INITIAL_MATRIX, refilled with
+  /// MAT_REUSE_MATRIX (then A must keep the pattern it had).
+  virtual PetscErrorCode coarse_operator(Vec x0, Mat fine, MatReuse reuse, Mat* coarse) const = 0;
   PetscErrorCode project(Vec fine, Vec coarse) const {
     return project(fine, coarse, Projection::kNatural);
   }
@@ -55,6 +59,8 @@ class LinearTransfer final : public LevelTransfer {
   PetscErrorCode restrict_gradient(Vec x0, Vec fine_gradient, Vec coarse_gradient) const override;
   PetscErrorCode project(Vec fine, Vec coarse, Projection kind) const override;
   using LevelTransfer::project;
+  /// Sᵀ A S (MatPtAP).
+  PetscErrorCode coarse_operator(Vec x0, Mat fine, MatReuse reuse, Mat* coarse) const override;
   double relative_cost() const override { return relative_cost_; }
 
  private:

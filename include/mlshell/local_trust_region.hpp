@@ -148,6 +148,10 @@ class LocalTrustRegion {
   PetscErrorCode accept_trial();
   /// ‖v‖ in the level norm.
   PetscErrorCode level_norm(Vec v, PetscReal* norm) const;
+  /// The Hessian of the level's current quadratic model: the one its last subproblem used (at
+  /// most the lag's accepted steps old), or ∇²f at x assembled now if there was none since
+  /// start(). RMTR's Galerkin coarse models are built from it.
+  PetscErrorCode model_hessian(Mat* H);
 
   Objective& objective() { return f_; }
   Vec solution() const { return x_; }
@@ -193,6 +197,7 @@ class LocalTrustRegion {
   bool last_accepted_ = true;       // the last iterate() accepted its step: expect the next to pass
   int hessian_lag_ = 0, kept_ = 0;  // accepted steps the current Hessian has been kept
   bool hessian_due_ = false;        // x_ moved past the Hessian's point: assemble before a QP
+  bool hessian_since_start_ = false;  // H_ was assembled after the last start()
   TrustRegionCounters counters_;
 };
 

@@ -36,6 +36,10 @@ PetscErrorCode LinearTransfer::restrict_gradient(Vec, Vec fine_gradient,
   return MatMult(R_, fine_gradient, coarse_gradient);
 }
 
+PetscErrorCode LinearTransfer::coarse_operator(Vec, Mat fine, MatReuse reuse, Mat* coarse) const {
+  return MatPtAP(fine, S_, reuse, PETSC_DEFAULT, coarse);
+}
+
 PetscErrorCode LinearTransfer::project(Vec fine, Vec coarse, Projection kind) const {
   PetscFunctionBeginUser;
   switch (kind) {

@@ -37,6 +37,13 @@ MUTATIONS = [
      "const PetscReal coarse_reduction = f0 - lc.tr->value();",
      "RMTR's coarse reduction is the difference of two coarse values (round-off of either sign "
      "below the noise of h)", ()),
+    ("galerkin-half-dropped", "solvers/coarse_level_model.cpp",
+     "    *h = wr + 0.5 * wgw;", "    *h = wr + wgw;",
+     "the Galerkin coarse model's value is ⟨r, w⟩ + wᵀGw (the quadratic term doubled)", ()),
+    ("galerkin-first-order", "solvers/tao_rmtr.cpp",
+     "if (rg > tao->gatol && c.coarse_model == kGalerkin) {",
+     "if (rg > tao->gatol && c.coarse_model == -1) {",
+     "-tao_rmtr_coarse_model galerkin builds the first-order models (4.3)", ()),
     ("stcg-target-ignored", "solvers/trust_region_qp.cpp",
      "std::max(atol_, target_)", "atol_",
      "STCG runs its full iteration count whatever the model gradient (-tao_rmtr_stcg_target "

@@ -200,3 +200,18 @@ TEST(MpiEquivalence, FullMultigridStartReachesTheSameStateOnOneAndTwoRanks) {
                                 {"-tao_rmtr_fmg_cycles", "1"}},
                                "fmg");
 }
+
+// Galerkin coarse models (-tao_rmtr_coarse_model galerkin): J_Pᵀ H J_P formed from the
+// distributed fine Hessians (MatPtAP across the rank boundary), with the patch smoother and with
+// Dogleg smoothing, V-cycles from the given iterate.
+TEST(MpiEquivalence, GalerkinCoarseModelsReachTheSameStateOnOneAndTwoRanks) {
+  expect_same_trampoline_state(2, 1,
+                               {{"-tao_rmtr_smoother_qp", "stcg"},
+                                {"-tao_rmtr_smoother_pc", "vpatch"},
+                                {"-tao_rmtr_coarse_model", "galerkin"},
+                                {"-tao_rmtr_fmg_cycles", "0"}},
+                               "galerkin-vpatch");
+  expect_same_trampoline_state(
+      2, 1, {{"-tao_rmtr_coarse_model", "galerkin"}, {"-tao_rmtr_fmg_cycles", "0"}},
+      "galerkin-dogleg");
+}

@@ -98,14 +98,19 @@ double max_abs(const std::vector<double>& a) {
 TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
   // Trampoline refined twice (1,083 dofs, levels 147 / 363 / 1,083) and the clamped plate;
   // Dogleg smoothing (the default), STCG preconditioned by vertex patches, and the same with
-  // each level's Hessian kept for two accepted steps.
-  for (const char* smoother : {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2"})
+  // each level's Hessian kept for two accepted steps; each smoother also with Galerkin coarse
+  // models.
+  for (const char* smoother : {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin",
+                               "stcg-vpatch-galerkin"})
     for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
-      const bool patches = std::string(smoother) != "dogleg";
-      const bool lag = std::string(smoother) == "stcg-vpatch-lag2";
+      const std::string name = smoother;
+      const bool patches = name.starts_with("stcg");
+      const bool lag = name == "stcg-vpatch-lag2";
+      const bool galerkin = name.ends_with("galerkin");
       ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
                                {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
-                               {"-tao_rmtr_hessian_lag", lag ? "2" : "0"}});
+                               {"-tao_rmtr_hessian_lag", lag ? "2" : "0"},
+                               {"-tao_rmtr_coarse_model", galerkin ? "galerkin" : "first_order"}});
       const Scene scene = example(file, 2, 1);
       Outcome tr;
       {
@@ -157,12 +162,14 @@ TEST(Rmtr, CoarseLevelsDoTheWorkAndTheAccountsAddUp) {
 TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
   // Record f after every V-cycle through TAO's convergence history; Dogleg smoothing, STCG
   // with vertex patches, and the same after a full-multigrid start (f₀ is the given iterate's
-  // energy, the first V-cycle starts from the prolongated coarse solution).
-  for (const int variant : {0, 1, 2}) {
+  // energy, the first V-cycle starts from the prolongated coarse solution), also with Galerkin
+  // coarse models.
+  for (const int variant : {0, 1, 2, 3}) {
     const bool patches = variant > 0;
     ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
                              {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
-                             {"-tao_rmtr_fmg_cycles", variant == 2 ? "1" : "0"}});
+                             {"-tao_rmtr_fmg_cycles", variant >= 2 ? "1" : "0"},
+                             {"-tao_rmtr_coarse_model", variant == 3 ? "galerkin" : "first_order"}});
     RestingTrampoline t;
     StepSolver solver(t.problem.level(2), &t.problem);
     ASSERT_EQ(solver.type(), "rmtr");
@@ -180,7 +187,7 @@ TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
       EXPECT_LE(f[i], f[i - 1] + 1e-10 * std::abs(f[i - 1])) << "V-cycle " << i;
     RmtrStatistics stats;
     rmtr_statistics(solver.tao(), &stats);
-    EXPECT_EQ(stats.fmg_cycles > 0, variant == 2) << stats.fmg_cycles;
+    EXPECT_EQ(stats.fmg_cycles > 0, variant >= 2) << stats.fmg_cycles;
   }
 }
 
@@ -354,6 +361,37 @@ TEST(Rmtr, CoarseLevelsSaveFineHessians) {
       << "RMTR " << rmtr.fine_hessians << " fine Hessians, TR " << tr.fine_hessians;
   EXPECT_LT(2 * rmtr.iterations, tr.iterations)
       << "RMTR " << rmtr.iterations << " V-cycles, TR " << tr.iterations << " iterations";
+}
+
+// -tao_rmtr_coarse_model galerkin: the coarse levels minimise the fine quadratic model on the
+// coarse space, h(x₀ + w) = ⟨R∇h, w⟩ + ½ wᵀ SᵀHS w, and never evaluate their own energies. On
+// the resting trampoline (1,083 dofs, 3 levels, V-cycles from the given iterate) coarse
+// corrections are taken, and RMTR reaches the same minimiser as with the first-order models
+// (4.3), whose coarse levels do evaluate theirs.
+TEST(Rmtr, GalerkinCoarseModelsCorrectWithoutEvaluatingTheCoarseLevels) {
+  ScopedOptions o({{"-tao_rmtr_fmg_cycles", "0"}});
+  double energy[2];
+  for (const bool galerkin : {false, true}) {
+    ScopedOptions model({{"-tao_rmtr_coarse_model", galerkin ? "galerkin" : "first_order"}});
+    RestingTrampoline t;
+    StepSolver solver(t.problem.level(2), &t.problem);
+    SolveReport report;
+    ASSERT_EQ(solver.solve(t.u, report), 0);
+    ASSERT_TRUE(report.converged) << report.reason;
+    t.problem.level(2).objective(t.u, &energy[galerkin], nullptr);
+    RmtrStatistics stats;
+    rmtr_statistics(solver.tao(), &stats);
+    long accepted = 0;
+    for (const RmtrLevelStatistics& s : stats.levels) accepted += s.coarse_accepted;
+    EXPECT_GT(accepted, 0) << "galerkin " << galerkin;
+    EXPECT_GT(stats.levels[1].successful, 0) << "galerkin " << galerkin;  // coarse steps kept
+    for (int l = 0; l < 2; ++l) {
+      const long evaluations = t.problem.level(l).objective_evaluations() +
+                               t.problem.level(l).hessian_evaluations();
+      EXPECT_EQ(evaluations == 0, galerkin) << "level " << l << ": " << evaluations;
+    }
+  }
+  EXPECT_NEAR(energy[1], energy[0], 1e-10 * std::abs(energy[0]));
 }
 
 // -tao_rmtr_stcg_target: STCG stops once its model gradient ‖g + Hs‖ is a tenth of the tolerance
