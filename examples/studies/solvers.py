@@ -24,6 +24,12 @@ SOLVERS = {
                            "full-multigrid start)",
                            ["-options_file", "@petsc-options/rmtr-patch.yaml",
                             "-tao_rmtr_fmg_cycles", "0"]),
+    "rmtr-galerkin": ("RMTR as rmtr, Galerkin coarse models (the finer quadratic model "
+                      "J_P^T H J_P on each coarser level)",
+                      ["-tao_type", "rmtr", "-tao_rmtr_coarse_model", "galerkin"]),
+    "rmtr-patch-galerkin": ("RMTR, the patch smoother (100 ST-CG its) with Galerkin coarse "
+                            "models, each coarser level solved by the full-multigrid start",
+                            ["-options_file", "@petsc-options/rmtr-patch-galerkin.yaml"]),
     "tr": ("single-level TR, Dogleg (Alg. 4.1)", ["-tao_type", "tr", "-tao_max_it", "100000"]),
     "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),
     "bnls-mumps": ("TAO bnls, ST-CG + MUMPS LU (line-search Newton)", ["-tao_type", "bnls"]),
