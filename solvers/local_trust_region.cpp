@@ -41,6 +41,11 @@ bool StoppingRule::stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscRe
   return std::abs(df) <= stagnation * std::abs(f) || dx <= stagnation * xnorm;
 }
 
+void StoppingRule::end_stagnated(Tao tao, PetscReal gnorm, PetscReal g0) const {
+  tao->reason = gnorm <= limiting_factor * tolerance(tao, g0) ? TAO_CONVERGED_STEPTOL
+                                                              : TAO_DIVERGED_USER;
+}
+
 bool StoppingRule::collapsed(PetscReal delta, PetscReal xnorm) const {
   return delta < min_radius * std::max<PetscReal>(1.0, xnorm);
 }

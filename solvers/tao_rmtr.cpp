@@ -16,9 +16,11 @@
 // when d > (1 − ε^Δ) Δ^{l+1} (Alg. 4.3). A level also stops when ‖∇h^l‖ ≤ ε_g (-tao_gatol).
 // Stopping: TAO's tolerances on the finest gradient (eq. 7.1, first part), then StoppingRule
 // (local_trust_region.hpp) on the finest level: |Δf| or ‖Δx‖ over a V-cycle below
-// -tao_rmtr_stagnation relative to |f| and ‖x‖ while Δ > 1e15 (eq. 7.1, second part), or the
-// radius shrinking below -tao_rmtr_min_radius · max(1, ‖x‖): CONVERGED_LIMITING_ACCURACY if ‖g‖
-// is within -tao_rmtr_limiting_factor (100) of the tolerance, else DIVERGED_TR_REDUCTION.
+// -tao_rmtr_stagnation relative to |f| and ‖x‖ while Δ > 1e15 (eq. 7.1, second part:
+// CONVERGED_STEPTOL if ‖g‖ is within -tao_rmtr_limiting_factor (100) of the tolerance, else
+// DIVERGED_STAGNATION, since V-cycles that converge linearly inflate Δ too), or the radius
+// shrinking below -tao_rmtr_min_radius · max(1, ‖x‖): CONVERGED_LIMITING_ACCURACY if ‖g‖ is
+// within that factor of the tolerance, else DIVERGED_TR_REDUCTION.
 //
 // Options (Table 2 defaults):
 //   -tao_rmtr_levels <all>           number of levels used (the finest ones of the hierarchy)
@@ -561,7 +563,7 @@ PetscErrorCode solve(Tao tao) {
       PetscCall(VecNorm(previous, NORM_2, &dx));
       PetscCall(VecNorm(top.tr->solution(), NORM_2, &xnorm_new));
       if (c->stopping.stagnated(delta, f_old - f, f, dx, xnorm_new))
-        tao->reason = TAO_CONVERGED_STEPTOL;
+        c->stopping.end_stagnated(tao, gnorm, g0);
     }
     if (tao->reason == TAO_CONTINUE_ITERATING &&
         c->stopping.at_floor(tao, f_old - f, top.objective->evaluation_error(), gnorm, g0))

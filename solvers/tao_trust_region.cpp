@@ -11,9 +11,10 @@
 // reassembled only after an accepted step, so a rejected step reuses the Hessian (and the
 // Dogleg factorisation). Stopping: TAO's tolerances (-tao_gatol ...), plus StoppingRule
 // (local_trust_region.hpp): the second part of eq. (7.1), relative (-tao_tr_stagnation 1e-12),
-// and the radius collapsing below -tao_tr_min_radius (1e-14 · max(1, ‖x‖)), which is convergence
-// at the limiting accuracy (CONVERGED_LIMITING_ACCURACY) if ‖g‖ is within
-// -tao_tr_limiting_factor (100) of the gradient tolerance, and DIVERGED_TR_REDUCTION otherwise.
+// and the radius collapsing below -tao_tr_min_radius (1e-14 · max(1, ‖x‖)). Each is convergence
+// (CONVERGED_STEPTOL; at the limiting accuracy, CONVERGED_LIMITING_ACCURACY) if ‖g‖ is within
+// -tao_tr_limiting_factor (100) of the gradient tolerance, and a failure otherwise
+// (DIVERGED_STAGNATION; DIVERGED_TR_REDUCTION).
 #include <petsc/private/taoimpl.h>
 
 #include <algorithm>
@@ -109,7 +110,7 @@ PetscErrorCode solve(Tao tao) {
     if (tao->reason == TAO_CONTINUE_ITERATING && it.accepted) {
       PetscCall(VecNorm(tr.solution(), NORM_2, &xnorm));
       if (ctx->stopping.stagnated(delta, it.decrease, tr.value(), it.step_norm, xnorm))
-        tao->reason = TAO_CONVERGED_STEPTOL;
+        ctx->stopping.end_stagnated(tao, tr.gradient_norm(), g0);
     }
     if (tao->reason == TAO_CONTINUE_ITERATING &&
         ctx->stopping.at_floor(tao, f_before - tr.value(), tr.objective().evaluation_error(),
@@ -199,6 +200,7 @@ std::string trust_region_converged_reason(Tao tao) {
   if (limiting) return "CONVERGED_LIMITING_ACCURACY";
   TaoConvergedReason reason;
   TaoGetConvergedReason(tao, &reason);
+  if (reason == TAO_DIVERGED_USER && (t == "tr" || t == "rmtr")) return "DIVERGED_STAGNATION";
   return TaoConvergedReasons[reason];
 }
 

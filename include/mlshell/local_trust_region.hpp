@@ -54,7 +54,11 @@ struct TrustRegionParameters {
 /// (paper eq. 7.1 and §7.2).
 ///   - Stagnation, the second part of (7.1): once Δ > 1e15 (Newton's regime), an accepted
 ///     iteration with |Δf| ≤ s·|f| or ‖Δx‖ ≤ s·‖x‖. The
-///     paper's absolute 1e-12 is relative here, so that it holds for any units and size.
+///     paper's absolute 1e-12 is relative here, so that it holds for any units and size. A
+///     large radius is no proof of Newton's regime: an iteration that converges linearly (RMTR's
+///     V-cycles, a poor Hessian) inflates Δ by every success while |Δf| ~ ‖g‖²/λ falls below
+///     s·|f| long before ‖g‖ reaches its floor. So stagnation is convergence only with ‖g‖
+///     within `limiting_factor` of the tolerance, as for a radius collapse; else a failure.
 ///   - Radius collapse, Δ < r·max(1, ‖x‖): no step lowers f in floating point. If ‖g‖ is within
 ///     `limiting_factor` of the gradient tolerance, the solve has reached the limiting accuracy
 ///     of f (its round-off floor) and converged; otherwise it failed (DIVERGED_TR_REDUCTION).
@@ -70,6 +74,10 @@ struct StoppingRule {
   void end_at_floor(Tao tao, bool* limiting) const;
   void reset_floor() { floor_count_ = 0; }
   bool stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx, PetscReal xnorm) const;
+  /// Sets tao->reason after stagnation at gradient norm `gnorm` (‖g₀‖ = `g0` at the start):
+  /// TAO_CONVERGED_STEPTOL if ‖g‖ is within `limiting_factor` of the tolerance, else
+  /// TAO_DIVERGED_USER (reported as DIVERGED_STAGNATION).
+  void end_stagnated(Tao tao, PetscReal gnorm, PetscReal g0) const;
   bool collapsed(PetscReal delta, PetscReal xnorm) const;
   /// Sets tao->reason after a collapse at gradient norm `gnorm` (‖g₀‖ = `g0` at the start):
   /// TAO_CONVERGED_USER (reported as CONVERGED_LIMITING_ACCURACY, *limiting = true) or

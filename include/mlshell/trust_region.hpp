@@ -71,7 +71,8 @@ PetscErrorCode register_newton_baseline_tao_types();
 PetscErrorCode register_projected_newton_tao_type();
 
 /// Why the last solve of `tao` stopped: TAO's reason, or CONVERGED_LIMITING_ACCURACY when a
-/// "tr" or "rmtr" solve ended at the round-off floor (StoppingRule, local_trust_region.hpp).
+/// "tr" or "rmtr" solve ended at the round-off floor, or DIVERGED_STAGNATION when one stagnated
+/// far above its tolerance (StoppingRule, local_trust_region.hpp).
 std::string trust_region_converged_reason(Tao tao);
 
 /// Tells a "tr" or "rmtr" solver which objective its callbacks evaluate, so that it can ask

@@ -44,6 +44,11 @@ MUTATIONS = [
      "if (rg > tao->gatol && c.coarse_model == kGalerkin) {",
      "if (rg > tao->gatol && c.coarse_model == -1) {",
      "-tao_rmtr_coarse_model galerkin builds the first-order models (4.3)", ()),
+    ("stagnation-always-converged", "solvers/local_trust_region.cpp",
+     "                                                              : TAO_DIVERGED_USER;",
+     "                                                              : TAO_CONVERGED_STEPTOL;",
+     "the stagnation test of (7.1) reports convergence however far ‖g‖ is above the tolerance",
+     ()),
     ("stcg-target-ignored", "solvers/trust_region_qp.cpp",
      "std::max(atol_, target_)", "atol_",
      "STCG runs its full iteration count whatever the model gradient (-tao_rmtr_stcg_target "

@@ -29,12 +29,13 @@ double noise(const PetscScalar* x, PetscInt n, std::uint64_t salt) {
   return static_cast<double>(h % 2000001) / 1e6 - 1.0;
 }
 
-/// f(x) = ½ Σ d_i x_i² − Σ x_i on 50 unknowns (d from 1 to 1e4; the Hessian handed to the solver
-/// is off by up to 50 %), with noise of absolute size
+/// f(x) = c + ½ Σ d_i x_i² − Σ x_i on 50 unknowns (d from 1 to 1e4; the Hessian handed to the
+/// solver is off by up to 50 %; c = `f_offset`), with noise of absolute size
 /// `f_noise` in f, `g_noise` in each gradient entry, a constant `g_bias` added to ∇f and a
 /// `g_sign` multiplying it (wrong gradients).
 struct NoisyQuadratic final : Objective {
-  double f_noise = 0.0, g_noise = 0.0, g_bias = 0.0, g_sign = 1.0;
+  double f_noise = 0.0, g_noise = 0.0, g_bias = 0.0, g_sign = 1.0, f_offset = 0.0;
+  bool hessian_doubled = false;  // H = 2 ∇²f: every step half Newton's, every one accepted
   int evaluations = 0, gradients = 0;  // objective() calls, and those with a gradient
   static constexpr PetscInt n = 50;
   static double d(PetscInt i) { return std::pow(1e4, static_cast<double>(i) / (n - 1)); }
@@ -46,7 +47,7 @@ struct NoisyQuadratic final : Objective {
     PetscCall(VecGetArrayRead(x, &a));
     double v = 0.0;
     for (PetscInt i = 0; i < n; ++i) v += 0.5 * d(i) * a[i] * a[i] - a[i];
-    *f = v + f_noise * noise(a, n, 1);
+    *f = f_offset + v + f_noise * noise(a, n, 1);
     if (g) {
       PetscScalar* ga;
       PetscCall(VecGetArray(g, &ga));
@@ -61,7 +62,8 @@ struct NoisyQuadratic final : Objective {
     PetscFunctionBeginUser;
     // 50 % off on some entries, so that the solve converges linearly through the noise.
     for (PetscInt i = 0; i < n; ++i)
-      PetscCall(MatSetValue(H, i, i, d(i) * (1.0 + 0.5 * std::sin(i)), INSERT_VALUES));
+      PetscCall(MatSetValue(H, i, i, d(i) * (hessian_doubled ? 2.0 : 1.0 + 0.5 * std::sin(i)),
+                            INSERT_VALUES));
     PetscCall(MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
     PetscFunctionReturn(0);
@@ -174,6 +176,47 @@ TEST(LimitingAccuracy, ARadiusCollapseFarAboveTheFloorStaysAFailure) {
     EXPECT_EQ(o.reason, "DIVERGED_TR_REDUCTION") << type;
     EXPECT_FALSE(o.converged) << type;
     EXPECT_NEAR(o.gnorm, std::sqrt(50.0), 1e-6) << type;
+  }
+}
+
+TEST(LimitingAccuracy, StagnationIsConvergenceOnlyNearTheTolerance) {
+  // The second part of (7.1) ends a solve; with ‖g‖ within the limiting factor (100) of the
+  // tolerance that is convergence (CONVERGED_STEPTOL), above it a failure.
+  Tao tao;
+  TaoCreate(PETSC_COMM_SELF, &tao);
+  TaoSetTolerances(tao, 1e-7, 0.0, 1e-10);
+  StoppingRule rule;
+  TaoConvergedReason reason;
+  rule.end_stagnated(tao, 9e-6, 1.0);
+  TaoGetConvergedReason(tao, &reason);
+  EXPECT_EQ(reason, TAO_CONVERGED_STEPTOL);
+  rule.end_stagnated(tao, 2e-5, 1.0);
+  TaoGetConvergedReason(tao, &reason);
+  EXPECT_EQ(reason, TAO_DIVERGED_USER);
+  rule.end_stagnated(tao, 2e-5, 1e6);  // the relative tolerance 1e-10 ‖g₀‖ = 1e-4 governs
+  TaoGetConvergedReason(tao, &reason);
+  EXPECT_EQ(reason, TAO_CONVERGED_STEPTOL);
+  TaoDestroy(&tao);
+}
+
+TEST(LimitingAccuracy, StagnationFarAboveTheToleranceIsAFailure) {
+  // f = 1e6 + a quadratic, from a radius of 1e16 (the regime the paper's (7.1) takes for
+  // Newton's): with twice the true Hessian every step is half Newton's and accepted (ρ = 1.5),
+  // so the radius stays above 1e15 while ‖g‖ halves per step, and a step lowers f by less than
+  // 1e-12 |f| = 1e-6 once ‖g‖ ≲ 1e-3, far above the tolerance 1e-10. Stagnation there is no
+  // convergence: DIVERGED_STAGNATION, with ‖g‖ as it was.
+  for (const char* type : {"tr", "rmtr"}) {
+    const std::string radius = std::string("-tao_") + type + "_delta0";
+    PetscOptionsSetValue(nullptr, radius.c_str(), "1e16");
+    NoisyQuadratic q;
+    q.f_offset = 1e6;
+    q.f_noise = 1e-10;  // the rounding of f near 1e6
+    q.hessian_doubled = true;
+    const Outcome o = solve(q, type, 1e-10);
+    PetscOptionsClearValue(nullptr, radius.c_str());
+    EXPECT_EQ(o.reason, "DIVERGED_STAGNATION") << type;
+    EXPECT_FALSE(o.converged) << type;
+    EXPECT_GT(o.gnorm, 1e-8) << type;
   }
 }
 
