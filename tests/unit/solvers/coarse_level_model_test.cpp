@@ -171,9 +171,11 @@ TEST(CoarseLevelModel, GalerkinModelIsTheFineQuadraticOnTheCoarseSpace) {
   VecAXPY(gh, -1.0, v);
   VecNorm(gh, NORM_INFINITY, &err);
   EXPECT_LT(err, 1e-10 * ref);
-  // The Hessian: G copied into the coarse level's own matrix without new allocations; a central
+  // The Hessian: G copied into the coarse level's own matrix without new allocations, over the
+  // level's own Hessian left there before (the full-multigrid start assembles it); a central
   // difference of the gradient along d agrees with H d to round-off (the model is quadratic).
   t.problem.level(0).create_hessian(&Hc);
+  t.problem.level(0).hessian(x0, Hc);
   ASSERT_EQ(model.hessian(x, Hc), 0);
   MatInfo info;
   MatGetInfo(Hc, MAT_LOCAL, &info);
