@@ -42,8 +42,8 @@ bool StoppingRule::stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscRe
 }
 
 void StoppingRule::end_stagnated(Tao tao, PetscReal gnorm, PetscReal g0) const {
-  tao->reason = gnorm <= limiting_factor * tolerance(tao, g0) ? TAO_CONVERGED_STEPTOL
-                                                              : TAO_DIVERGED_USER;
+  tao->reason =
+      gnorm <= limiting_factor * tolerance(tao, g0) ? TAO_CONVERGED_STEPTOL : TAO_DIVERGED_USER;
 }
 
 bool StoppingRule::collapsed(PetscReal delta, PetscReal xnorm) const {

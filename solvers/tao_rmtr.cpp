@@ -80,8 +80,8 @@ const char* const kProjectionNames[] = {"reverse",    "lsq",         "restrictio
                                         "Projection", "PROJECTION_", nullptr};
 const char* const kQpNames[] = {"dogleg", "stcg", "RmtrQp", "RMTR_QP_", nullptr};
 enum CoarseModel { kFirstOrder = 0, kGalerkin = 1 };
-const char* const kCoarseModelNames[] = {"first_order", "galerkin", "CoarseModel",
-                                         "COARSE_MODEL_", nullptr};
+const char* const kCoarseModelNames[] = {"first_order", "galerkin", "CoarseModel", "COARSE_MODEL_",
+                                         nullptr};
 
 struct Level {
   Objective* objective = nullptr;           // h^l
@@ -264,17 +264,17 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
   PetscReal rg, f0;
   PetscCall(VecNorm(lc.restricted, NORM_2, &rg));
   bool attempted = false;
-  if (rg > tao->gatol && c.coarse_model == kGalerkin) {
-    Mat H;  // the level's model Hessian, as its smoother's last subproblem used it
-    PetscCall(lv.tr->model_hessian(&H));
-    PetscCall(transfer(c, l).coarse_operator(
-        lc.x0, H, lc.galerkin ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &lc.galerkin));
-    PetscCall(lc.model->initialize_galerkin(lc.x0, lc.restricted, lc.galerkin));
-    f0 = 0.0;
-  } else if (rg > tao->gatol) {
-    PetscCall(lc.model->initialize(lc.x0, lc.restricted, &f0));
-  }
   if (rg > tao->gatol) {
+    if (c.coarse_model == kGalerkin) {
+      Mat H;  // the level's model Hessian, as its smoother's last subproblem used it
+      PetscCall(lv.tr->model_hessian(&H));
+      PetscCall(transfer(c, l).coarse_operator(
+          lc.x0, H, lc.galerkin ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &lc.galerkin));
+      PetscCall(lc.model->initialize_galerkin(lc.x0, lc.restricted, lc.galerkin));
+      f0 = 0.0;
+    } else {
+      PetscCall(lc.model->initialize(lc.x0, lc.restricted, &f0));
+    }
     PetscCall(lc.tr->start(lc.x0, &f0, lc.restricted));
     attempted = lc.tr->finite();  // a projected state outside the material's domain: skip
     if (attempted && c.check_consistency) {  // eq. (4.5): ∇h^{l−1}(x₀) = R ∇h^l
@@ -661,17 +661,16 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
                     ? (c->requested_levels > 0 ? static_cast<int>(c->requested_levels)
                                                : (c->hierarchy ? c->hierarchy->num_levels() : 1))
                     : static_cast<int>(c->levels.size());
-  PetscCall(PetscViewerASCIIPrintf(viewer,
-                                   "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT
-                                   ", mu2 = %" PetscInt_FMT ", coarsest %" PetscInt_FMT
-                                   " step(s) of %s, smoother %s (%" PetscInt_FMT " iterations "
-                                   "or a model gradient of %g gatol, PC %s), projection %s, "
-                                   "%s coarse models\n",
-                                   n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1,
-                                   c->mu2, c->coarse_max_it, kQpNames[c->coarse_qp],
-                                   kQpNames[c->smoother_qp], c->stcg_max_it, (double)c->stcg_target,
-                                   c->smoother_pc, kProjectionNames[c->projection],
-                                   kCoarseModelNames[c->coarse_model]));
+  PetscCall(PetscViewerASCIIPrintf(
+      viewer,
+      "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT ", mu2 = %" PetscInt_FMT
+      ", coarsest %" PetscInt_FMT " step(s) of %s, smoother %s (%" PetscInt_FMT
+      " iterations "
+      "or a model gradient of %g gatol, PC %s), projection %s, "
+      "%s coarse models\n",
+      n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1, c->mu2, c->coarse_max_it,
+      kQpNames[c->coarse_qp], kQpNames[c->smoother_qp], c->stcg_max_it, (double)c->stcg_target,
+      c->smoother_pc, kProjectionNames[c->projection], kCoarseModelNames[c->coarse_model]));
   PetscCall(PetscViewerASCIIPrintf(
       viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",
       (double)c->delta0, (double)c->params.eta1, (double)c->params.eta2, (double)c->params.gamma1,

@@ -131,8 +131,8 @@ TEST(CoarseLevelModel, GalerkinModelIsTheFineQuadraticOnTheCoarseSpace) {
   // computed here from fine-level products only; its gradient and Hessian are those of that
   // quadratic, and the Galerkin operator fits the coarse Hessian's pattern.
   TwoLevels t;
-  Vec u1 = t.random(1, 1e-3, 11), g1, x0 = t.random(0, 1e-3, 12), rg, w = t.random(0, 1e-3, 13),
-      x, gh, s, hs, v;
+  Vec u1 = t.random(1, 1e-3, 11), g1, x0 = t.random(0, 1e-3, 12), rg, w = t.random(0, 1e-3, 13), x,
+      gh, s, hs, v;
   VecDuplicate(u1, &g1);
   VecDuplicate(u1, &s);
   VecDuplicate(u1, &hs);

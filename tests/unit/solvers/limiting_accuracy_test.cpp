@@ -35,7 +35,7 @@ double noise(const PetscScalar* x, PetscInt n, std::uint64_t salt) {
 /// `g_sign` multiplying it (wrong gradients).
 struct NoisyQuadratic final : Objective {
   double f_noise = 0.0, g_noise = 0.0, g_bias = 0.0, g_sign = 1.0, f_offset = 0.0;
-  bool hessian_doubled = false;  // H = 2 ∇²f: every step half Newton's, every one accepted
+  bool hessian_doubled = false;        // H = 2 ∇²f: every step half Newton's, every one accepted
   int evaluations = 0, gradients = 0;  // objective() calls, and those with a gradient
   static constexpr PetscInt n = 50;
   static double d(PetscInt i) { return std::pow(1e4, static_cast<double>(i) / (n - 1)); }

@@ -100,8 +100,8 @@ TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
   // Dogleg smoothing (the default), STCG preconditioned by vertex patches, and the same with
   // each level's Hessian kept for two accepted steps; each smoother also with Galerkin coarse
   // models.
-  for (const char* smoother : {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin",
-                               "stcg-vpatch-galerkin"})
+  for (const char* smoother :
+       {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin", "stcg-vpatch-galerkin"})
     for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
       const std::string name = smoother;
       const bool patches = name.starts_with("stcg");
@@ -166,10 +166,11 @@ TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
   // coarse models.
   for (const int variant : {0, 1, 2, 3}) {
     const bool patches = variant > 0;
-    ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
-                             {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
-                             {"-tao_rmtr_fmg_cycles", variant >= 2 ? "1" : "0"},
-                             {"-tao_rmtr_coarse_model", variant == 3 ? "galerkin" : "first_order"}});
+    ScopedOptions smoothing(
+        {{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
+         {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
+         {"-tao_rmtr_fmg_cycles", variant >= 2 ? "1" : "0"},
+         {"-tao_rmtr_coarse_model", variant == 3 ? "galerkin" : "first_order"}});
     RestingTrampoline t;
     StepSolver solver(t.problem.level(2), &t.problem);
     ASSERT_EQ(solver.type(), "rmtr");
@@ -386,8 +387,8 @@ TEST(Rmtr, GalerkinCoarseModelsCorrectWithoutEvaluatingTheCoarseLevels) {
     EXPECT_GT(accepted, 0) << "galerkin " << galerkin;
     EXPECT_GT(stats.levels[1].successful, 0) << "galerkin " << galerkin;  // coarse steps kept
     for (int l = 0; l < 2; ++l) {
-      const long evaluations = t.problem.level(l).objective_evaluations() +
-                               t.problem.level(l).hessian_evaluations();
+      const long evaluations =
+          t.problem.level(l).objective_evaluations() + t.problem.level(l).hessian_evaluations();
       EXPECT_EQ(evaluations == 0, galerkin) << "level " << l << ": " << evaluations;
     }
   }
