@@ -7,6 +7,8 @@ afterwards, whatever happens. The suite run is `ctest` less its three long end-t
 (studies.quick, cli.hard_cases, cli.paper_scenes), plus those a mutation names in `also`.
 
 usage: tests/mutation/mutations.py BUILD_DIR [NAME ...]   (default: every mutation)
+       tests/mutation/mutations.py --check   (each text occurs once: no mutation has gone stale;
+                                              ctest mutations.texts)
 Writes BUILD_DIR/mutations.md (the table) and prints it."""
 import os
 import re
@@ -273,9 +275,26 @@ def check(build, name, path, old, new, what, also):
         file.write_text(text)
 
 
+def stale():
+    """The mutations whose text does not occur exactly once in their file, with the count."""
+    names = [m[0] for m in MUTATIONS]
+    out = [f"{n}: the name is used {names.count(n)} times" for n in sorted(set(names))
+           if names.count(n) > 1]
+    for name, path, old, *_ in MUTATIONS:
+        file = SOURCE / path
+        count = file.read_text().count(old) if file.is_file() else 0
+        if count != 1:
+            out.append(f"{name}: its text occurs {count} times in {path}")
+    return out
+
+
 def main(argv):
+    if len(argv) == 2 and argv[1] == "--check":
+        problems = stale()
+        print("\n".join(problems) or f"all {len(MUTATIONS)} mutations apply")
+        sys.exit(1 if problems else 0)
     if len(argv) < 2:
-        sys.exit(__doc__.strip().splitlines()[-2])
+        sys.exit(__doc__.strip().splitlines()[-4])
     build = Path(argv[1]).resolve()
     chosen = [m for m in MUTATIONS if len(argv) == 2 or m[0] in argv[2:]]
     rows = ["| mutation | what it breaks | tests that failed | s |", "|---|---|---|---|"]
