@@ -75,6 +75,8 @@ PetscErrorCode CoarseLevelModel::hessian(Vec x, Mat H) {
     PetscCall(level_.hessian(x, H));
     PetscFunctionReturn(0);
   }
+  // H may hold the level's own Hessian (the full-multigrid start) where G has no entry.
+  PetscCall(MatZeroEntries(H));
   PetscCall(MatCopy(galerkin_, H, SUBSET_NONZERO_PATTERN));
   PetscFunctionReturn(0);
 }
