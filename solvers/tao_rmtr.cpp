@@ -665,9 +665,7 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
       viewer,
       "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT ", mu2 = %" PetscInt_FMT
       ", coarsest %" PetscInt_FMT " step(s) of %s, smoother %s (%" PetscInt_FMT
-      " iterations "
-      "or a model gradient of %g gatol, PC %s), projection %s, "
-      "%s coarse models\n",
+      " iterations or a model gradient of %g gatol, PC %s), projection %s, %s coarse models\n",
       n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1, c->mu2, c->coarse_max_it,
       kQpNames[c->coarse_qp], kQpNames[c->smoother_qp], c->stcg_max_it, (double)c->stcg_target,
       c->smoother_pc, kProjectionNames[c->projection], kCoarseModelNames[c->coarse_model]));

@@ -60,7 +60,7 @@ struct NoisyQuadratic final : Objective {
   }
   PetscErrorCode hessian(Vec, Mat H) override {
     PetscFunctionBeginUser;
-    // 50 % off on some entries, so that the solve converges linearly through the noise.
+    // 50 % off on some entries (or twice ∇²f), so that the solve converges linearly.
     for (PetscInt i = 0; i < n; ++i)
       PetscCall(MatSetValue(H, i, i, d(i) * (hessian_doubled ? 2.0 : 1.0 + 0.5 * std::sin(i)),
                             INSERT_VALUES));
