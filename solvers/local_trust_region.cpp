@@ -63,13 +63,17 @@ void StoppingRule::end_collapsed(Tao tao, PetscReal gnorm, PetscReal g0, bool* l
 
 bool StoppingRule::at_floor(Tao tao, PetscReal df, PetscReal f_error, PetscReal gnorm,
                             PetscReal g0) {
-  const bool noise =
-      std::abs(df) <= 10.0 * f_error && gnorm <= limiting_factor * tolerance(tao, g0);
-  if (!noise || (floor_count_ > 0 && gnorm < 0.5 * floor_gnorm_)) {
-    floor_count_ = 0;
-    if (!noise) return false;
+  // Each decrease within the noise, and their sum over the window too: a solve that converges
+  // slowly lowers f by less than its noise per iteration but steadily, and is not at the floor.
+  const PetscReal noise = 10.0 * f_error;
+  const bool meandering = std::abs(df) <= noise && std::abs(floor_decrease_ + df) <= noise &&
+                          gnorm <= limiting_factor * tolerance(tao, g0);
+  if (!meandering || (floor_count_ > 0 && gnorm < 0.5 * floor_gnorm_)) {
+    reset_floor();
+    if (!meandering) return false;
   }
   if (floor_count_ == 0) floor_gnorm_ = gnorm;
+  floor_decrease_ += df;
   return ++floor_count_ >= floor_iterations;
 }
 

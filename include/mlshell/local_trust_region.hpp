@@ -72,7 +72,10 @@ struct StoppingRule {
   /// the solve has meandered at the floor long enough (then call end_at_floor).
   bool at_floor(Tao tao, PetscReal df, PetscReal f_error, PetscReal gnorm, PetscReal g0);
   void end_at_floor(Tao tao, bool* limiting) const;
-  void reset_floor() { floor_count_ = 0; }
+  void reset_floor() {
+    floor_count_ = 0;
+    floor_decrease_ = 0.0;
+  }
   bool stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx, PetscReal xnorm) const;
   /// Sets tao->reason after stagnation at gradient norm `gnorm` (‖g₀‖ = `g0` at the start):
   /// TAO_CONVERGED_STEPTOL if ‖g‖ is within `limiting_factor` of the tolerance, else
@@ -89,7 +92,8 @@ struct StoppingRule {
  private:
   PetscReal tolerance(Tao tao, PetscReal g0) const;
   PetscInt floor_count_ = 0;
-  PetscReal floor_gnorm_ = 0.0;  // ‖g‖ when the count started
+  PetscReal floor_gnorm_ = 0.0;     // ‖g‖ when the count started
+  PetscReal floor_decrease_ = 0.0;  // decrease of f since the count started
 };
 
 /// Reads `<prefix>eta1`, `eta2`, `gamma1`, `gamma2` inside a PetscOptionsBegin/End block.

@@ -51,6 +51,10 @@ MUTATIONS = [
      "? TAO_CONVERGED_STEPTOL : TAO_CONVERGED_STEPTOL;",
      "the stagnation test of (7.1) reports convergence however far ‖g‖ is above the tolerance",
      ()),
+    ("floor-ignores-steady-progress", "solvers/local_trust_region.cpp",
+     "std::abs(floor_decrease_ + df) <= noise", "true",
+     "a slow solve that lowers f steadily by less than its noise per iteration is declared at "
+     "the floor (converged at the limiting accuracy) far from its minimiser", ()),
     ("stcg-target-ignored", "solvers/trust_region_qp.cpp",
      "std::max(atol_, target_)", "atol_",
      "STCG runs its full iteration count whatever the model gradient (-tao_rmtr_stcg_target "

@@ -220,6 +220,29 @@ TEST(LimitingAccuracy, StagnationFarAboveTheToleranceIsAFailure) {
   }
 }
 
+TEST(LimitingAccuracy, SlowSteadyProgressBelowTheNoiseIsNoFloor) {
+  // StoppingRule::at_floor, fed one iteration at a time with energy noise 1e-12 and ‖g‖ within
+  // the limiting factor of the tolerance 1e-7. At the floor the decreases of f scatter within
+  // the noise and the gradient does not fall: the solve ends after floor_iterations (20). A slow
+  // solve (V-cycles contracting ‖g‖ by 0.99, as on the re-entrant corner) lowers f by less than
+  // the noise per iteration but steadily, and would have been stopped 2e-4 above its minimum:
+  // it must go on.
+  Tao tao;
+  TaoCreate(PETSC_COMM_SELF, &tao);
+  TaoSetTolerances(tao, 1e-7, 0.0, 0.0);
+  const double f_error = 1e-12;
+  StoppingRule floor;
+  int ended = 0;
+  for (int i = 1; i <= 100 && !ended; ++i)
+    if (floor.at_floor(tao, (i % 2 ? 4.0 : -4.0) * f_error, f_error, 5e-6, 1.0)) ended = i;
+  EXPECT_EQ(ended, 20);
+  StoppingRule slow;
+  double gnorm = 6e-6;
+  for (int i = 1; i <= 200; ++i, gnorm *= 0.997)
+    EXPECT_FALSE(slow.at_floor(tao, 4.0 * f_error, f_error, gnorm, 1.0)) << "iteration " << i;
+  TaoDestroy(&tao);
+}
+
 // The serial iterate, step and (unused) Hessian of a LocalTrustRegion on a NoisyQuadratic, and
 // Σ d_i, the quadratic's curvature sum.
 struct SeqWorkspace {
