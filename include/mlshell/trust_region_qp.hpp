@@ -18,7 +18,9 @@
 //  * Steihaug–Toint CG: PETSc's KSPSTCG with the radius, a maximum iteration count (10 as a
 //    smoother) and the model value from KSPCGGetObjFcn; it stops at the boundary on negative
 //    curvature. With a preconditioner M (symmetric positive definite, e.g. PC "vpatch") the
-//    iteration is preconditioned CG and the radius bounds ‖s‖_M (PETSc's STCG).
+//    iteration is preconditioned CG; the radius still bounds the Euclidean ‖s‖₂, the level
+//    norm RMTR's radii are measured in (PETSc's STCG by default; `<prefix>ksp_cg_dtype
+//    preconditioned` would bound ‖s‖_M instead).
 #pragma once
 
 #include <petscksp.h>
@@ -32,7 +34,9 @@ struct QpResult {
   PetscReal step_norm = 0.0;
   /// The least radius for which the subproblem returns this same step: the radius itself for a
   /// step on the boundary, the step's length in the radius' norm for one inside (Dogleg: the
-  /// longer of the Cauchy and Newton points; STCG: ‖s‖_M, its iterates lengthen monotonically).
+  /// longer of the Cauchy and Newton points; STCG: ‖s‖₂, the norm its radius bounds, in which
+  /// plain CG's iterates lengthen monotonically; preconditioned ones need not, and a radius
+  /// just above ‖s‖₂ may then stop an earlier iterate at the boundary instead).
   PetscReal radius_needed = 0.0;
   int iterations = 0;     ///< CG iterations (STCG) or factorisations (Dogleg)
   const char* kind = "";  ///< "newton", "dogleg", "shifted" (Newton/dogleg with H + λI),
