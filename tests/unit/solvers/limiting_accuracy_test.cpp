@@ -224,9 +224,9 @@ TEST(LimitingAccuracy, SlowSteadyProgressBelowTheNoiseIsNoFloor) {
   // StoppingRule::at_floor, fed one iteration at a time with energy noise 1e-12 and ‖g‖ within
   // the limiting factor of the tolerance 1e-7. At the floor the decreases of f scatter within
   // the noise and the gradient does not fall: the solve ends after floor_iterations (20). A slow
-  // solve (V-cycles contracting ‖g‖ by 0.99, as on the re-entrant corner) lowers f by less than
-  // the noise per iteration but steadily, and would have been stopped 2e-4 above its minimum:
-  // it must go on.
+  // solve (‖g‖ falling by 0.3 % per iteration, too little to halve within the window; the
+  // re-entrant corner's V-cycles were stopped so 2e-4 above the minimum) lowers f by less than
+  // the noise per iteration but steadily: it must go on.
   Tao tao;
   TaoCreate(PETSC_COMM_SELF, &tao);
   TaoSetTolerances(tao, 1e-7, 0.0, 0.0);
