@@ -36,8 +36,8 @@ PetscErrorCode TrustRegionParameters::validate(MPI_Comm comm, const char* prefix
 }
 
 bool StoppingRule::stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx,
-                             PetscReal xnorm) const {
-  if (!(delta > 1e15)) return false;
+                             PetscReal xnorm, PetscReal gradient_ratio) const {
+  if (!(delta > 1e15) || gradient_ratio < 0.9) return false;
   return std::abs(df) <= stagnation * std::abs(f) || dx <= stagnation * xnorm;
 }
 

@@ -54,6 +54,10 @@
 //                                    state x = 0 (a scene's first step), where the iterate says
 //                                    nothing about the solution: from a previous step's state it
 //                                    can move a folding cloth to another branch
+//   -tao_rmtr_subspace 0             after each V-cycle on a level above the coarsest whose
+//                                    correction was inside its radius, a trust-region step in
+//                                    the span of the correction and m − 1 earlier changes
+//                                    (SubspaceAcceleration; 0: off)
 //   -tao_rmtr_monitor                one line per V-cycle
 //   per-level QP options, PCMG style: -rmtr_levels_<l>_ksp_max_it, -rmtr_levels_<l>_pc_type ...
 //   for levels l ≥ 1 and -rmtr_coarse_pc_factor_mat_solver_type mumps ... for level 0.
@@ -67,6 +71,7 @@
 
 #include "mlshell/coarse_level_model.hpp"
 #include "mlshell/local_trust_region.hpp"
+#include "mlshell/subspace_acceleration.hpp"
 #include "mlshell/trust_region.hpp"
 #include "tao_objective.hpp"
 #include "tao_registration.hpp"
@@ -89,6 +94,7 @@ struct Level {
   Mat H = nullptr;                          // owned for l < L
   Mat galerkin = nullptr;                   // l < L, Galerkin models: J_Pᵀ ∇²h^{l+1} J_P
   std::unique_ptr<LocalTrustRegion> tr;
+  std::unique_ptr<SubspaceAcceleration> subspace;  // -tao_rmtr_subspace m > 0
   Vec x0 = nullptr, restricted = nullptr;     // l < L: x₀^l and R ∇h^{l+1}
   Vec correction = nullptr, trial = nullptr;  // l > 0: prolongated correction, x + s
   Vec scratch = nullptr;                      // l < L: x − x₀
@@ -102,7 +108,7 @@ struct RmtrContext {
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0, coarse_model = kFirstOrder;
   char smoother_pc[64] = "none";
-  PetscInt hessian_lag = 0, fmg_cycles = 1000;
+  PetscInt hessian_lag = 0, fmg_cycles = 1000, subspace = 0;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
   PetscReal stcg_target = 0.1;  // STCG stops at ‖g + Hs‖ ≤ stcg_target · gatol
   StoppingRule stopping;
@@ -191,6 +197,8 @@ PetscErrorCode setup(Tao tao) {
                 l == 0 ? PCNONE : c->smoother_pc),
         std::move(norm));
     lv.tr->set_hessian_lag(static_cast<int>(c->hessian_lag));
+    if (c->subspace > 0 && l > 0)
+      lv.subspace = std::make_unique<SubspaceAcceleration>(static_cast<int>(c->subspace));
     PetscCall(VecGetSize(like, &lv.stats.dofs));
   }
   PetscFunctionReturn(0);
@@ -343,6 +351,24 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
   PetscFunctionReturn(0);
 }
 
+/// After a V-cycle on level l that started at `start`: the subspace step (-tao_rmtr_subspace),
+/// if on; `note` (of `size` chars) gets its outcome for the monitor line.
+PetscErrorCode accelerate(RmtrContext& c, int l, Vec start, PetscReal* delta, char* note,
+                          size_t size) {
+  Level& lv = c.levels[l];
+  PetscFunctionBeginUser;
+  note[0] = '\0';
+  if (!lv.subspace) PetscFunctionReturn(0);
+  SubspaceStep st;
+  PetscCall(lv.subspace->step(*lv.tr, start, c.params, delta, &st));
+  if (st.tried) ++(st.accepted ? c.stats.subspace_accepted : c.stats.subspace_rejected);
+  if (st.tried)
+    PetscCall(PetscSNPrintf(note, size, ", subspace step %s (rho %.2f, correction x %.2f)",
+                            st.accepted ? "accepted" : "rejected", (double)st.rho,
+                            (double)(1.0 + st.relaxation)));
+  PetscFunctionReturn(0);
+}
+
 /// Copies `candidate` into `current` if f is finite and lower there; *taken says whether. ∇f at
 /// the candidate comes with f into `g` (*fc the value), so that a start from it evaluates nothing.
 PetscErrorCode keep_lower(Objective& f, Vec candidate, PetscReal f_current, Vec current,
@@ -367,6 +393,7 @@ PetscErrorCode fmg_solve_level(Tao tao, RmtrContext& c, int l, std::vector<long>
   const PetscReal g0 = lv.tr->gradient_norm(), tolerance = std::max(gatol, gttol * g0);
   StoppingRule rule = c.stopping;
   rule.reset_floor();
+  if (lv.subspace) lv.subspace->reset();
   PetscReal delta = c.delta0, xnorm, dx;
   Vec previous;  // not lv.scratch: the cycle uses it
   PetscCall(VecDuplicate(lv.x0, &previous));
@@ -374,15 +401,19 @@ PetscErrorCode fmg_solve_level(Tao tao, RmtrContext& c, int l, std::vector<long>
   while (*cycles < c.fmg_cycles && lv.tr->gradient_norm() > tolerance) {
     PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
     if (rule.collapsed(delta, xnorm)) break;
-    const PetscReal f_old = lv.tr->value();
+    const PetscReal f_old = lv.tr->value(), g_old = lv.tr->gradient_norm();
     PetscCall(VecCopy(lv.tr->solution(), previous));
     PetscCall(cycle(tao, c, l, PETSC_INFINITY, &delta, successful));
+    char note[96];
+    PetscCall(accelerate(c, l, previous, &delta, note, sizeof note));
     ++*cycles;
     const PetscReal f = lv.tr->value();
     PetscCall(VecAXPY(previous, -1.0, lv.tr->solution()));
     PetscCall(VecNorm(previous, NORM_2, &dx));
     PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
-    if (f < f_old && rule.stagnated(delta, f_old - f, f, dx, xnorm)) break;
+    if (f < f_old &&
+        rule.stagnated(delta, f_old - f, f, dx, xnorm, lv.tr->gradient_norm() / g_old))
+      break;
     if (rule.at_floor(tao, f_old - f, lv.objective->evaluation_error(), lv.tr->gradient_norm(), g0))
       break;
   }
@@ -486,6 +517,7 @@ PetscErrorCode solve(Tao tao) {
   c->stats.levels.resize(c->levels.size());
   c->limiting = false;
   c->stopping.reset_floor();
+  if (top.subspace) top.subspace->reset();
   tao->reason = TAO_CONTINUE_ITERATING;
   // Iteration 0 is the given iterate, also when the full-multigrid start moves it: tolerances
   // relative to ‖g₀‖ and the energy history refer to it.
@@ -536,11 +568,13 @@ PetscErrorCode solve(Tao tao) {
       c->stopping.end_collapsed(tao, top.tr->gradient_norm(), g0, &c->limiting);
       break;
     }
-    const PetscReal f_old = top.tr->value();
+    const PetscReal f_old = top.tr->value(), g_old = top.tr->gradient_norm();
     PetscCall(VecCopy(top.tr->solution(), previous));
     c->cycle_accepted = c->cycle_rejected = 0;
     std::vector<long> successful(c->levels.size(), 0);
     PetscCall(cycle(tao, *c, L, PETSC_INFINITY, &delta, successful));
+    char note[96];
+    PetscCall(accelerate(*c, L, previous, &delta, note, sizeof note));
     for (int l = 0; l <= L; ++l) c->stats.levels[l].successful += successful[l];
     ++c->stats.cycles;
     ++tao->niter;
@@ -550,9 +584,9 @@ PetscErrorCode solve(Tao tao) {
     if (c->monitor)
       PetscCall(PetscPrintf(PetscObjectComm((PetscObject)tao),
                             "  rmtr cycle %4" PetscInt_FMT "  f % .12e  |g| %.4e  delta %.3e  "
-                            "coarse corrections %ld accepted, %ld rejected\n",
+                            "coarse corrections %ld accepted, %ld rejected%s\n",
                             tao->niter, (double)f, (double)gnorm, (double)delta, c->cycle_accepted,
-                            c->cycle_rejected));
+                            c->cycle_rejected, note));
     PetscCall(TaoLogConvergenceHistory(tao, f, gnorm, 0.0, tao->ksp_its));
     PetscCall(TaoMonitor(tao, tao->niter, f, gnorm, 0.0, delta));
     PetscCall((*tao->ops->convergencetest)(tao, tao->cnvP));
@@ -562,7 +596,7 @@ PetscErrorCode solve(Tao tao) {
       PetscCall(VecAXPY(previous, -1.0, top.tr->solution()));
       PetscCall(VecNorm(previous, NORM_2, &dx));
       PetscCall(VecNorm(top.tr->solution(), NORM_2, &xnorm_new));
-      if (c->stopping.stagnated(delta, f_old - f, f, dx, xnorm_new))
+      if (c->stopping.stagnated(delta, f_old - f, f, dx, xnorm_new, gnorm / g_old))
         c->stopping.end_stagnated(tao, gnorm, g0);
     }
     if (tao->reason == TAO_CONTINUE_ITERATING &&
@@ -619,6 +653,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                             "full-multigrid start: V-cycles on each coarser level's own problem "
                             "before the finest (0: off)",
                             "", c->fmg_cycles, &c->fmg_cycles, nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_subspace",
+                            "after each V-cycle, a trust-region step in the span of its correction "
+                            "and this many minus one earlier changes (0: off)",
+                            "", c->subspace, &c->subspace, nullptr));
   PetscCall(PetscOptionsBool("-tao_rmtr_fmg_always",
                              "full-multigrid start before every solve, not only from the rest "
                              "state x = 0",
@@ -645,6 +683,8 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
              "-tao_rmtr_stcg_target: must lie in [0, 1), got %g", (double)c->stcg_target);
   PetscCheck(c->fmg_cycles >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_fmg_cycles must be >= 0, got %" PetscInt_FMT, c->fmg_cycles);
+  PetscCheck(c->subspace >= 0 && c->subspace <= 20, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_subspace must lie in [0, 20], got %" PetscInt_FMT, c->subspace);
   PetscCheck(c->hessian_lag >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_hessian_lag must be >= 0, got %" PetscInt_FMT, c->hessian_lag);
   PetscCheck(c->delta0 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -678,6 +718,12 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
         viewer,
         "  full-multigrid start (%s): at most %" PetscInt_FMT " V-cycle(s) per coarser level\n",
         c->fmg_always ? "before every solve" : "from the rest state x = 0", c->fmg_cycles));
+  if (c->subspace > 0)
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer,
+        "  subspace step after each V-cycle: its correction and %" PetscInt_FMT
+        " earlier change(s)\n",
+        c->subspace - 1));
   if (c->stats.cycles > 0) {
     PetscCall(PetscViewerASCIIPrintf(
         viewer,
@@ -701,6 +747,9 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
                                        "  full-multigrid start: %ld V-cycles on the coarser levels "
                                        "(in the counts above)\n",
                                        c->stats.fmg_cycles));
+    if (c->subspace > 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "  subspace steps: %ld accepted, %ld rejected\n",
+                                       c->stats.subspace_accepted, c->stats.subspace_rejected));
   }
   PetscFunctionReturn(0);
 }
@@ -742,6 +791,8 @@ RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
   }
   cycles += o.cycles;
   fmg_cycles += o.fmg_cycles;
+  subspace_accepted += o.subspace_accepted;
+  subspace_rejected += o.subspace_rejected;
   max_correction_ratio = std::max(max_correction_ratio, o.max_correction_ratio);
   max_consistency_error = std::max(max_consistency_error, o.max_consistency_error);
   max_projection_misfit = std::max(max_projection_misfit, o.max_projection_misfit);

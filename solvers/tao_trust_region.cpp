@@ -96,7 +96,7 @@ PetscErrorCode solve(Tao tao) {
       break;
     }
     TrustRegionIteration it;
-    const PetscReal f_before = tr.value();
+    const PetscReal f_before = tr.value(), g_before = tr.gradient_norm();
     PetscCall(tr.iterate(ctx->params, &delta, &it));
     tao->ksp_its += it.qp.iterations;
     tao->ksp_tot_its += it.qp.iterations;
@@ -109,7 +109,8 @@ PetscErrorCode solve(Tao tao) {
     // Eq. (7.1), second part: Newton-like regime and no more progress in floating point.
     if (tao->reason == TAO_CONTINUE_ITERATING && it.accepted) {
       PetscCall(VecNorm(tr.solution(), NORM_2, &xnorm));
-      if (ctx->stopping.stagnated(delta, it.decrease, tr.value(), it.step_norm, xnorm))
+      if (ctx->stopping.stagnated(delta, it.decrease, tr.value(), it.step_norm, xnorm,
+                                  tr.gradient_norm() / g_before))
         ctx->stopping.end_stagnated(tao, tr.gradient_norm(), g0);
     }
     if (tao->reason == TAO_CONTINUE_ITERATING &&

@@ -53,7 +53,7 @@ struct TrustRegionParameters {
 /// How a trust-region solve (TR, or RMTR on its finest level) ends besides TAO's tolerances
 /// (paper eq. 7.1 and §7.2).
 ///   - Stagnation, the second part of (7.1): once Δ > 1e15 (Newton's regime), an accepted
-///     iteration with |Δf| ≤ s·|f| or ‖Δx‖ ≤ s·‖x‖. The
+///     iteration with |Δf| ≤ s·|f| or ‖Δx‖ ≤ s·‖x‖ that lowered ‖g‖ by less than a tenth. The
 ///     paper's absolute 1e-12 is relative here, so that it holds for any units and size. A
 ///     large radius is no proof of Newton's regime: an iteration that converges linearly (RMTR's
 ///     V-cycles, a poor Hessian) inflates Δ by every success while |Δf| ~ ‖g‖²/λ falls below
@@ -76,7 +76,11 @@ struct StoppingRule {
     floor_count_ = 0;
     floor_decrease_ = 0.0;
   }
-  bool stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx, PetscReal xnorm) const;
+  /// `gradient_ratio`: ‖g‖ after the iteration over ‖g‖ before it. An iteration that still
+  /// lowers ‖g‖ by a tenth has not stagnated: below the resolution of f, the gradient shows
+  /// the progress (V-cycles that contract ‖g‖ by 0.5 lower f by less than 1e-12·|f| there).
+  bool stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx, PetscReal xnorm,
+                 PetscReal gradient_ratio) const;
   /// Sets tao->reason after stagnation at gradient norm `gnorm` (‖g₀‖ = `g0` at the start):
   /// TAO_CONVERGED_STEPTOL if ‖g‖ is within `limiting_factor` of the tolerance, else
   /// TAO_DIVERGED_USER (reported as DIVERGED_STAGNATION).

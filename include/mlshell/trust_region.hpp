@@ -38,6 +38,8 @@ struct RmtrStatistics {
   long cycles = 0;
   /// V-cycles of the full-multigrid start on the coarser levels (-tao_rmtr_fmg_cycles).
   long fmg_cycles = 0;
+  /// Subspace steps after V-cycles (-tao_rmtr_subspace), on every level: accepted, rejected.
+  long subspace_accepted = 0, subspace_rejected = 0;
   /// W of eq. (7.3): Σ_l 2^{−2(L−l)} Q^l, for assemblies and for QP solves.
   double assembly_work_units = 0.0, qp_work_units = 0.0;
   /// Checks of the theory, over all coarse-level corrections: max ‖I s‖_l / Δ^l (eq. 4.7, must

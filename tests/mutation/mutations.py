@@ -55,6 +55,20 @@ MUTATIONS = [
      "std::abs(floor_decrease_ + df) <= noise", "true",
      "a slow solve that lowers f steadily by less than its noise per iteration is declared at "
      "the floor (converged at the limiting accuracy) far from its minimiser", ()),
+    ("stagnation-ignores-gradient", "solvers/local_trust_region.cpp",
+     "if (!(delta > 1e15) || gradient_ratio < 0.9) return false;",
+     "if (!(delta > 1e15)) return false;",
+     "the stagnation test of (7.1) stops V-cycles that still contract ‖g‖ once f stops "
+     "changing in its last bits", ()),
+    ("subspace-hard-case-inside", "solvers/subspace_acceleration.cpp",
+     "      y(0) += tau;\n", "",
+     "the subspace step's small trust-region problem stops inside the ball in the hard case "
+     "(negative curvature not followed to the boundary)", ()),
+    ("subspace-no-acceptance-test", "solvers/subspace_acceleration.cpp",
+     "      if (out->rho > p.eta1) {\n        PetscCall(tr.accept_trial());",
+     "      if (true) {\n        PetscCall(tr.accept_trial());",
+     "the subspace step after a V-cycle is taken whatever its ratio ρ (the energy may rise)",
+     ()),
     ("stcg-target-ignored", "solvers/trust_region_qp.cpp",
      "std::max(atol_, target_)", "atol_",
      "STCG runs its full iteration count whatever the model gradient (-tao_rmtr_stcg_target "

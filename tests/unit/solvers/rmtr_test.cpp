@@ -99,15 +99,17 @@ TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
   // Trampoline refined twice (1,083 dofs, levels 147 / 363 / 1,083) and the clamped plate;
   // Dogleg smoothing (the default), STCG preconditioned by vertex patches, and the same with
   // each level's Hessian kept for two accepted steps; each smoother also with Galerkin coarse
-  // models.
-  for (const char* smoother :
-       {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin", "stcg-vpatch-galerkin"})
+  // models, and the patch smoother with Galerkin models and a subspace step after each V-cycle.
+  for (const char* smoother : {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin",
+                               "stcg-vpatch-galerkin", "stcg-vpatch-galerkin-subspace"})
     for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
       const std::string name = smoother;
       const bool patches = name.starts_with("stcg");
       const bool lag = name == "stcg-vpatch-lag2";
-      const bool galerkin = name.ends_with("galerkin");
+      const bool subspace = name.ends_with("subspace");
+      const bool galerkin = name.ends_with("galerkin") || subspace;
       ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
+                               {"-tao_rmtr_subspace", subspace ? "2" : "0"},
                                {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
                                {"-tao_rmtr_hessian_lag", lag ? "2" : "0"},
                                {"-tao_rmtr_coarse_model", galerkin ? "galerkin" : "first_order"}});
