@@ -90,8 +90,8 @@ PetscErrorCode SubspaceAcceleration::allocate(Vec like) {
 }
 
 PetscErrorCode SubspaceAcceleration::step(LocalTrustRegion& tr, Vec start,
-                                          const TrustRegionParameters& p, PetscReal* delta,
-                                          SubspaceStep* out) {
+                                          const TrustRegionParameters& p,
+                                          const PetscReal* delta, SubspaceStep* out) {
   PetscFunctionBeginUser;
   *out = SubspaceStep{};
   PetscCall(allocate(start));
@@ -133,8 +133,8 @@ PetscErrorCode SubspaceAcceleration::step(LocalTrustRegion& tr, Vec start,
     Eigen::MatrixXd T(m, static_cast<Eigen::Index>(kept.size()));
     for (size_t k = 0; k < kept.size(); ++k)
       T.col(k) = gram.eigenvectors().col(kept[k]) / std::sqrt(gram.eigenvalues()(kept[k]));
-    // The ℓ₂ radius: Δ itself, or translated from the level norm along the correction.
-    // Capped at reach_ times the correction's length: the step's own trust region.
+    // The ℓ₂ radius: Δ translated from the level norm along the correction, capped at reach_
+    // times the correction's length (the step's own trust region).
     const PetscReal radius = std::min(*delta * s_norm / s_level, reach_ * s_norm);
     const SmallTrustRegionStep small =
         solve_small_trust_region(T.transpose() * A * T, T.transpose() * b, radius);
@@ -176,9 +176,7 @@ PetscErrorCode SubspaceAcceleration::step(LocalTrustRegion& tr, Vec start,
         PetscCall(tr.accept_trial());
         out->accepted = true;
       }
-      // Alg. 4.1's radius rule on the reach: the straight line z + t·d leaves the quadratic
-      // regime of nearly inextensible cloth (a sway is a rotation) long before the model's
-      // minimiser along it, and the reach learns where.
+      // Alg. 4.1's radius rule on the reach (see the header).
       if (!(out->rho > p.eta1))
         reach_ = std::max<PetscReal>(kMinReach, p.gamma1 * std::min(reach_, d_norm / s_norm));
       else if (out->rho > p.eta2 && small.boundary)

@@ -54,6 +54,9 @@
 //                                    state x = 0 (a scene's first step), where the iterate says
 //                                    nothing about the solution: from a previous step's state it
 //                                    can move a folding cloth to another branch
+//   -tao_rmtr_retries 0              a rejected smoothing step is retried at once with the
+//                                    shrunk radius, up to this many times (0: the paper's one
+//                                    Local_TR iteration per smoothing step)
 //   -tao_rmtr_subspace 0             after each V-cycle on a level above the coarsest whose
 //                                    correction was inside its radius, a trust-region step in
 //                                    the span of the correction and m − 1 earlier changes
@@ -108,7 +111,7 @@ struct RmtrContext {
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0, coarse_model = kFirstOrder;
   char smoother_pc[64] = "none";
-  PetscInt hessian_lag = 0, fmg_cycles = 1000, subspace = 0;
+  PetscInt hessian_lag = 0, fmg_cycles = 1000, subspace = 0, retries = 0;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
   PetscReal stcg_target = 0.1;  // STCG stops at ‖g + Hs‖ ≤ stcg_target · gatol
   StoppingRule stopping;
@@ -217,7 +220,8 @@ PetscErrorCode cap_radius(RmtrContext& c, int l, PetscReal fine_radius, PetscRea
   PetscFunctionReturn(0);
 }
 
-/// Up to `steps` Local_TR iterations on level l. Returns false in *go_on when the level is done
+/// Up to `steps` Local_TR steps on level l, each retried after a rejection up to c.retries times
+/// (-tao_rmtr_retries). Returns false in *go_on when the level is done
 /// (gradient below ε_g, or no radius left).
 PetscErrorCode smooth(Tao tao, RmtrContext& c, int l, int steps, PetscReal fine_radius,
                       PetscReal* delta, std::vector<long>& successful, bool* go_on) {
@@ -225,16 +229,22 @@ PetscErrorCode smooth(Tao tao, RmtrContext& c, int l, int steps, PetscReal fine_
   PetscFunctionBeginUser;
   *go_on = true;
   for (int i = 0; i < steps; ++i) {
-    if (lv.tr->gradient_norm() <= tao->gatol || *delta <= 0.0) {
-      *go_on = false;
-      break;
+    // A rejected step is retried at once with the shrunk radius, up to -tao_rmtr_retries times,
+    // instead of waiting a whole V-cycle for the next smoothing step.
+    for (PetscInt tries = 0;; ++tries) {
+      if (lv.tr->gradient_norm() <= tao->gatol || *delta <= 0.0) {
+        *go_on = false;
+        break;
+      }
+      TrustRegionIteration it;
+      PetscCall(lv.tr->iterate(c.params, delta, &it));
+      tao->ksp_its += it.qp.iterations;
+      tao->ksp_tot_its += it.qp.iterations;
+      if (it.accepted) ++successful[l];
+      PetscCall(cap_radius(c, l, fine_radius, delta));
+      if (it.accepted || tries >= c.retries) break;
     }
-    TrustRegionIteration it;
-    PetscCall(lv.tr->iterate(c.params, delta, &it));
-    tao->ksp_its += it.qp.iterations;
-    tao->ksp_tot_its += it.qp.iterations;
-    if (it.accepted) ++successful[l];
-    PetscCall(cap_radius(c, l, fine_radius, delta));
+    if (!*go_on) break;
   }
   if (lv.tr->gradient_norm() <= tao->gatol || *delta <= 0.0) *go_on = false;
   PetscFunctionReturn(0);
@@ -653,6 +663,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                             "full-multigrid start: V-cycles on each coarser level's own problem "
                             "before the finest (0: off)",
                             "", c->fmg_cycles, &c->fmg_cycles, nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_retries",
+                            "a rejected smoothing step is retried at once with the shrunk radius, "
+                            "up to this many times (0: the paper's one iteration per step)",
+                            "", c->retries, &c->retries, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_subspace",
                             "after each V-cycle, a trust-region step in the span of its correction "
                             "and this many minus one earlier changes (0: off)",
@@ -683,6 +697,8 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
              "-tao_rmtr_stcg_target: must lie in [0, 1), got %g", (double)c->stcg_target);
   PetscCheck(c->fmg_cycles >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_fmg_cycles must be >= 0, got %" PetscInt_FMT, c->fmg_cycles);
+  PetscCheck(c->retries >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_retries must be >= 0, got %" PetscInt_FMT, c->retries);
   PetscCheck(c->subspace >= 0 && c->subspace <= 20, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_subspace must lie in [0, 20], got %" PetscInt_FMT, c->subspace);
   PetscCheck(c->hessian_lag >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,

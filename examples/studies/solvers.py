@@ -28,7 +28,8 @@ SOLVERS = {
                       "J_P^T H J_P on each coarser level)",
                       ["-tao_type", "rmtr", "-tao_rmtr_coarse_model", "galerkin"]),
     "rmtr-patch-galerkin": ("RMTR, the patch smoother (100 ST-CG its) with Galerkin coarse "
-                            "models, each coarser level solved by the full-multigrid start",
+                            "models, each coarser level solved by the full-multigrid start, a "
+                            "subspace step after each V-cycle",
                             ["-options_file", "@petsc-options/rmtr-patch-galerkin.yaml"]),
     "tr": ("single-level TR, Dogleg (Alg. 4.1)", ["-tao_type", "tr", "-tao_max_it", "100000"]),
     "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),

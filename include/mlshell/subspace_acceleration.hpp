@@ -9,15 +9,21 @@
 // a linear problem (with m = 2 and a fixed symmetric V-cycle, preconditioned CG's recurrence);
 // with m = 1 it is the optimal step length along the correction (1/(1 − c) for one slow mode).
 // Here the step is a Local_TR iteration (paper Alg. 4.1) at z = y_k + s_k:
-//   min  m(d) = ∇f(z)ᵀd + ½ dᵀHd   over d = Dα, ‖d‖ ≤ Δ,   D = [s_k, p_{k−1}, …, p_{k−m+1}],
+//   min  m(d) = ∇f(z)ᵀd + ½ dᵀHd   over d = Dα, ‖d‖ ≤ min(Δ, r‖s_k‖),   D = [s_k, p_{k−1}, …],
 // with H the Hessian of the level's last subproblem (no extra assembly: its post-smoothing
-// model), solved exactly in the r ≤ m dimensions D spans (ℓ₂-orthonormalised through the Gram
+// model), solved exactly in the (at most m) dimensions D spans (ℓ₂-orthonormalised by the Gram
 // matrix DᵀD; Moré–Sorensen on the small eigendecomposition, the hard case included). The trial
 // z + d is accepted when ρ = (f(z) − f(z + d)) / (m(0) − m(d)) > η₁, as any trust-region step:
-// the energy never rises. An accepted step updates Δ as Alg. 4.3 does (kept, or expanded on the
-// boundary); a rejected one leaves Δ alone, since it is an extra step and the V-cycle's own
-// iterations govern the radius. Costs per V-cycle: m Hessian-vector products, a few reductions
-// and one evaluation of f and ∇f (whose gradient serves the next pre-smoothing step if accepted).
+// the energy never rises. The reach r is the step's own radius, in multiples of the correction:
+// it starts at 1, doubles after a step with ρ > η₂ on its boundary and shrinks below a rejected
+// step's length (Alg. 4.1's rule), within [¼, 1000]. Hanging cloth needs it: its remaining error
+// near the solution is a sway, a rotation, and the energy along the straight line z + t·d leaves
+// its quadratic model within a few corrections' lengths (ρ = −1 to −15 at 3–10 of them on the
+// re-entrant corner at ‖g‖ ≈ 10⁻³). The level's radius Δ is left alone (the V-cycle's own
+// iterations govern it), and while Δ limits the V-cycle's corrections (longer than ½Δ:
+// globalisation, where the model is poor beyond them) no step is tried and the earlier changes
+// are forgotten. Costs per V-cycle: m Hessian-vector products, a few reductions and one
+// evaluation of f and ∇f (whose gradient serves the next pre-smoothing step if accepted).
 #pragma once
 
 #include <petscvec.h>
@@ -60,9 +66,9 @@ class SubspaceAcceleration {
     reach_ = 1.0;
   }
   /// One step of `tr` after a V-cycle that started at `start` (y_k) and left tr at z; `delta` is
-  /// the level's radius, updated on acceptance. The change y_{k+1} − y_k joins the history.
+  /// the level's radius (read, not changed). The change y_{k+1} − y_k joins the history.
   PetscErrorCode step(LocalTrustRegion& tr, Vec start, const TrustRegionParameters& p,
-                      PetscReal* delta, SubspaceStep* out);
+                      const PetscReal* delta, SubspaceStep* out);
 
  private:
   PetscErrorCode allocate(Vec like);

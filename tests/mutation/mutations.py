@@ -60,6 +60,9 @@ MUTATIONS = [
      "if (!(delta > 1e15)) return false;",
      "the stagnation test of (7.1) stops V-cycles that still contract ‖g‖ once f stops "
      "changing in its last bits", ()),
+    ("retries-ignored", "solvers/tao_rmtr.cpp",
+     "      if (it.accepted || tries >= c.retries) break;", "      break;",
+     "-tao_rmtr_retries ignored: a rejected smoothing step waits a V-cycle for the next", ()),
     ("subspace-hard-case-inside", "solvers/subspace_acceleration.cpp",
      "      y(0) += tau;\n", "",
      "the subspace step's small trust-region problem stops inside the ball in the hard case "
