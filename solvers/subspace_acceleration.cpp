@@ -90,8 +90,8 @@ PetscErrorCode SubspaceAcceleration::allocate(Vec like) {
 }
 
 PetscErrorCode SubspaceAcceleration::step(LocalTrustRegion& tr, Vec start,
-                                          const TrustRegionParameters& p,
-                                          const PetscReal* delta, SubspaceStep* out) {
+                                          const TrustRegionParameters& p, PetscReal delta,
+                                          SubspaceStep* out) {
   PetscFunctionBeginUser;
   *out = SubspaceStep{};
   PetscCall(allocate(start));
@@ -102,7 +102,7 @@ PetscErrorCode SubspaceAcceleration::step(LocalTrustRegion& tr, Vec start,
   if (s_norm > 0.0) PetscCall(tr.level_norm(correction_, &s_level));
   // While the radius limits the V-cycle's steps (globalisation), the quadratic model is poor
   // beyond them: the cycle goes on unaccelerated, and the changes it makes there are forgotten.
-  const bool local = s_norm > 0.0 && s_level <= kLocalShare * *delta;
+  const bool local = s_norm > 0.0 && s_level <= kLocalShare * delta;
   if (!local) stored_ = 0;
   if (local && tr.finite()) {
     directions_.assign(1, correction_);
@@ -135,7 +135,7 @@ PetscErrorCode SubspaceAcceleration::step(LocalTrustRegion& tr, Vec start,
       T.col(k) = gram.eigenvectors().col(kept[k]) / std::sqrt(gram.eigenvalues()(kept[k]));
     // The ℓ₂ radius: Δ translated from the level norm along the correction, capped at reach_
     // times the correction's length (the step's own trust region).
-    const PetscReal radius = std::min(*delta * s_norm / s_level, reach_ * s_norm);
+    const PetscReal radius = std::min(delta * s_norm / s_level, reach_ * s_norm);
     const SmallTrustRegionStep small =
         solve_small_trust_region(T.transpose() * A * T, T.transpose() * b, radius);
     Eigen::VectorXd alpha = T * small.a;
@@ -148,7 +148,7 @@ PetscErrorCode SubspaceAcceleration::step(LocalTrustRegion& tr, Vec start,
       PetscCall(tr.level_norm(step_, &d_level));
       // Shorten to the level-norm radius, and to an admissible step (contact); m(tα) < 0 for
       // t ∈ (0, 1] is rechecked below.
-      PetscReal t = d_level > *delta ? *delta / d_level : 1.0, admissible = 1.0;
+      PetscReal t = d_level > delta ? delta / d_level : 1.0, admissible = 1.0;
       PetscCall(VecScale(step_, t));
       PetscCall(tr.objective().max_step(tr.solution(), step_, &admissible));
       if (admissible < 1.0) PetscCall(VecScale(step_, admissible));

@@ -363,7 +363,7 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
 
 /// After a V-cycle on level l that started at `start`: the subspace step (-tao_rmtr_subspace),
 /// if on; `note` (of `size` chars) gets its outcome for the monitor line.
-PetscErrorCode accelerate(RmtrContext& c, int l, Vec start, PetscReal* delta, char* note,
+PetscErrorCode accelerate(RmtrContext& c, int l, Vec start, PetscReal delta, char* note,
                           size_t size) {
   Level& lv = c.levels[l];
   PetscFunctionBeginUser;
@@ -415,7 +415,7 @@ PetscErrorCode fmg_solve_level(Tao tao, RmtrContext& c, int l, std::vector<long>
     PetscCall(VecCopy(lv.tr->solution(), previous));
     PetscCall(cycle(tao, c, l, PETSC_INFINITY, &delta, successful));
     char note[96];
-    PetscCall(accelerate(c, l, previous, &delta, note, sizeof note));
+    PetscCall(accelerate(c, l, previous, delta, note, sizeof note));
     ++*cycles;
     const PetscReal f = lv.tr->value();
     PetscCall(VecAXPY(previous, -1.0, lv.tr->solution()));
@@ -584,7 +584,7 @@ PetscErrorCode solve(Tao tao) {
     std::vector<long> successful(c->levels.size(), 0);
     PetscCall(cycle(tao, *c, L, PETSC_INFINITY, &delta, successful));
     char note[96];
-    PetscCall(accelerate(*c, L, previous, &delta, note, sizeof note));
+    PetscCall(accelerate(*c, L, previous, delta, note, sizeof note));
     for (int l = 0; l <= L; ++l) c->stats.levels[l].successful += successful[l];
     ++c->stats.cycles;
     ++tao->niter;

@@ -66,9 +66,9 @@ class SubspaceAcceleration {
     reach_ = 1.0;
   }
   /// One step of `tr` after a V-cycle that started at `start` (y_k) and left tr at z; `delta` is
-  /// the level's radius (read, not changed). The change y_{k+1} − y_k joins the history.
+  /// the level's radius Δ. The change y_{k+1} − y_k joins the history.
   PetscErrorCode step(LocalTrustRegion& tr, Vec start, const TrustRegionParameters& p,
-                      const PetscReal* delta, SubspaceStep* out);
+                      PetscReal delta, SubspaceStep* out);
 
  private:
   PetscErrorCode allocate(Vec like);

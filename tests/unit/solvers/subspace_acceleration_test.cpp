@@ -193,15 +193,15 @@ TEST(SubspaceAcceleration, ExtendsASlowCorrectionToTheMinimiserOfAQuadratic) {
   lv.tr->start(lv.y);
   SubspaceAcceleration subspace(2);
   TrustRegionParameters p;
-  PetscReal delta = 1e10, error0, error;
+  const PetscReal delta = 1e10;
+  PetscReal error0, error;
   VecNorm(minimiser, NORM_2, &error0);
   int accepted = 0;
   for (int k = 0; k < 5; ++k) {
     lv.cycle(minimiser, 0.1);
     SubspaceStep st;
-    ASSERT_EQ(subspace.step(*lv.tr, lv.y, p, &delta, &st), 0);
+    ASSERT_EQ(subspace.step(*lv.tr, lv.y, p, delta, &st), 0);
     accepted += st.accepted;
-    EXPECT_EQ(delta, 1e10) << "the subspace step leaves the level's radius alone";
   }
   VecAXPY(minimiser, -1.0, lv.tr->solution());
   VecNorm(minimiser, NORM_2, &error);
@@ -228,9 +228,9 @@ TEST(SubspaceAcceleration, AStepTheEnergyRejectsIsNotTaken) {
   ASSERT_NEAR(lv.tr->value(), 0.5, 1e-15);
   SubspaceAcceleration subspace(1);
   TrustRegionParameters p;
-  PetscReal delta = 1e10;
+  const PetscReal delta = 1e10;
   SubspaceStep st;
-  ASSERT_EQ(subspace.step(*lv.tr, lv.y, p, &delta, &st), 0);
+  ASSERT_EQ(subspace.step(*lv.tr, lv.y, p, delta, &st), 0);
   EXPECT_TRUE(st.tried);
   EXPECT_FALSE(st.accepted);
   EXPECT_NEAR(st.rho, -39.0, 1e-9);
