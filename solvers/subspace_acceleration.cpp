@@ -101,7 +101,8 @@ PetscErrorCode SubspaceAcceleration::step(LocalTrustRegion& tr, Vec start,
   PetscReal s_level = 0.0;
   if (s_norm > 0.0) PetscCall(tr.level_norm(correction_, &s_level));
   // While the radius limits the V-cycle's steps (globalisation), the quadratic model is poor
-  // beyond them: the cycle goes on unaccelerated, and the changes it makes there are forgotten.
+  // beyond them: no step, and only this cycle's change is kept for the next (the earlier ones
+  // are forgotten).
   const bool local = s_norm > 0.0 && s_level <= kLocalShare * delta;
   if (!local) stored_ = 0;
   if (local && tr.finite()) {

@@ -21,8 +21,8 @@
 // its quadratic model within a few corrections' lengths (ρ = −1 to −15 at 3–10 of them on the
 // re-entrant corner at ‖g‖ ≈ 10⁻³). The level's radius Δ is left alone (the V-cycle's own
 // iterations govern it), and while Δ limits the V-cycle's corrections (longer than ½Δ:
-// globalisation, where the model is poor beyond them) no step is tried and the earlier changes
-// are forgotten. Costs per V-cycle: m Hessian-vector products, a few reductions and one
+// globalisation, where the model is poor beyond them) no step is tried and only the latest
+// change is kept. Costs per V-cycle: m Hessian-vector products, a few reductions and one
 // evaluation of f and ∇f (whose gradient serves the next pre-smoothing step if accepted).
 #pragma once
 
