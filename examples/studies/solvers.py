@@ -29,7 +29,7 @@ SOLVERS = {
                       ["-tao_type", "rmtr", "-tao_rmtr_coarse_model", "galerkin"]),
     "rmtr-patch-galerkin": ("RMTR, the patch smoother (100 ST-CG its) with Galerkin coarse "
                             "models, each coarser level solved by the full-multigrid start, a "
-                            "subspace step after each V-cycle",
+                            "subspace step after each V-cycle, retried smoothing steps",
                             ["-options_file", "@petsc-options/rmtr-patch-galerkin.yaml"]),
     "tr": ("single-level TR, Dogleg (Alg. 4.1)", ["-tao_type", "tr", "-tao_max_it", "100000"]),
     "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),
