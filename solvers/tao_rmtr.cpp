@@ -371,11 +371,11 @@ PetscErrorCode accelerate(RmtrContext& c, int l, Vec start, PetscReal delta, cha
   if (!lv.subspace) PetscFunctionReturn(0);
   SubspaceStep st;
   PetscCall(lv.subspace->step(*lv.tr, start, c.params, delta, &st));
-  if (st.tried) ++(st.accepted ? c.stats.subspace_accepted : c.stats.subspace_rejected);
-  if (st.tried)
-    PetscCall(PetscSNPrintf(note, size, ", subspace step %s (rho %.2f, correction x %.2f)",
-                            st.accepted ? "accepted" : "rejected", (double)st.rho,
-                            (double)(1.0 + st.relaxation)));
+  if (!st.tried) PetscFunctionReturn(0);
+  ++(st.accepted ? c.stats.subspace_accepted : c.stats.subspace_rejected);
+  PetscCall(PetscSNPrintf(note, size, ", subspace step %s (rho %.2f, correction x %.2f)",
+                          st.accepted ? "accepted" : "rejected", (double)st.rho,
+                          (double)(1.0 + st.relaxation)));
   PetscFunctionReturn(0);
 }
 
