@@ -36,8 +36,14 @@ PetscErrorCode TrustRegionParameters::validate(MPI_Comm comm, const char* prefix
 }
 
 bool StoppingRule::stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx,
-                             PetscReal xnorm, PetscReal gradient_ratio) const {
-  if (!(delta > 1e15) || gradient_ratio < 0.9) return false;
+                             PetscReal xnorm, PetscReal gnorm) {
+  if (gnorm < 0.9 * best_gnorm_) {
+    best_gnorm_ = gnorm;
+    since_best_ = 0;
+  } else {
+    ++since_best_;
+  }
+  if (!(delta > 1e15) || since_best_ < stagnation_window) return false;
   return std::abs(df) <= stagnation * std::abs(f) || dx <= stagnation * xnorm;
 }
 
@@ -99,9 +105,15 @@ PetscErrorCode StoppingRule::options(PetscOptionItems* PetscOptionsObject,
                             "iterations within the noise of f, near the tolerance, that end the "
                             "solve at the limiting accuracy",
                             "", floor_iterations, &floor_iterations, nullptr));
-  PetscCheck(floor_iterations >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "%sfloor_iterations must be >= 1, got %" PetscInt_FMT, prefix.c_str(),
-             floor_iterations);
+  PetscCall(PetscOptionsInt((prefix + "stagnation_window").c_str(),
+                            "the stagnation test of (7.1) ends a solve only if no iteration among "
+                            "this many lowered |g| below 0.9 times its lowest value before",
+                            "", stagnation_window, &stagnation_window, nullptr));
+  PetscCheck(floor_iterations >= 1 && stagnation_window >= 1, PETSC_COMM_WORLD,
+             PETSC_ERR_ARG_OUTOFRANGE,
+             "%sfloor_iterations and %sstagnation_window must be >= 1, got %" PetscInt_FMT
+             " and %" PetscInt_FMT,
+             prefix.c_str(), prefix.c_str(), floor_iterations, stagnation_window);
   PetscCheck(stagnation >= 0 && min_radius > 0 && limiting_factor >= 1, PETSC_COMM_WORLD,
              PETSC_ERR_ARG_OUTOFRANGE,
              "%sstagnation must be >= 0, %smin_radius > 0 and %slimiting_factor >= 1; got %g, %g "

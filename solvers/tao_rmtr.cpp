@@ -16,8 +16,10 @@
 // when d > (1 − ε^Δ) Δ^{l+1} (Alg. 4.3). A level also stops when ‖∇h^l‖ ≤ ε_g (-tao_gatol).
 // Stopping: TAO's tolerances on the finest gradient (eq. 7.1, first part), then StoppingRule
 // (local_trust_region.hpp) on the finest level: |Δf| or ‖Δx‖ over a V-cycle below
-// -tao_rmtr_stagnation relative to |f| and ‖x‖ while Δ > 1e15 (eq. 7.1, second part:
-// CONVERGED_STEPTOL if ‖g‖ is within -tao_rmtr_limiting_factor (100) of the tolerance, else
+// -tao_rmtr_stagnation relative to |f| and ‖x‖ while Δ > 1e15, with no V-cycle among the
+// last -tao_rmtr_stagnation_window (3) taking ‖g‖ below 0.9 times its lowest before (eq. 7.1,
+// second part: CONVERGED_STEPTOL if ‖g‖ is within -tao_rmtr_limiting_factor (100) of the
+// tolerance, else
 // DIVERGED_STAGNATION, since V-cycles that converge linearly inflate Δ too), or the radius
 // shrinking below -tao_rmtr_min_radius · max(1, ‖x‖): CONVERGED_LIMITING_ACCURACY if ‖g‖ is
 // within that factor of the tolerance, else DIVERGED_TR_REDUCTION.
@@ -30,6 +32,13 @@
 //   -tao_rmtr_gamma2 2 -tao_rmtr_eps_delta 0.001
 //   -tao_rmtr_projection reverse|lsq|restriction   P of eq. (4.6): reverse subdivision Q,
 //        least squares (IᵀI)⁻¹Iᵀ, or restriction scaled to preserve constants (diag(R1)⁻¹R)
+//   -tao_rmtr_coarse_start projection|iterate   x₀^{l−1} of step 2: the projection above (the
+//        paper), or the coarser level's own iterate as its last visit left it (where its
+//        correction was accepted, its end point; else its start), projected only on a first
+//        visit: the coarse level then models the fine one around a state of its own, which
+//        follows the fine iterate's large rotations through the accepted corrections, instead
+//        of around a projection of the fine details (full-multigrid starts leave every level
+//        its own solution)
 //   -tao_rmtr_coarse_model first_order|galerkin   h^{l−1} of step 2: the level's own objective
 //        with the first-order consistency term (eq. 4.3, the paper), or the Galerkin model
 //        ⟨R∇h^l, w⟩ + ½ wᵀ J_Pᵀ H^l J_P w, w = x − x₀^{l−1}, with H^l the Hessian of the finer
@@ -88,6 +97,9 @@ const char* const kProjectionNames[] = {"reverse",    "lsq",         "restrictio
                                         "Projection", "PROJECTION_", nullptr};
 const char* const kQpNames[] = {"dogleg", "stcg", "RmtrQp", "RMTR_QP_", nullptr};
 enum CoarseModel { kFirstOrder = 0, kGalerkin = 1 };
+enum CoarseStart { kProjected = 0, kIterate = 1 };
+const char* const kCoarseStartNames[] = {"projection", "iterate", "CoarseStart", "COARSE_START_",
+                                         nullptr};
 const char* const kCoarseModelNames[] = {"first_order", "galerkin", "CoarseModel", "COARSE_MODEL_",
                                          nullptr};
 
@@ -98,11 +110,13 @@ struct Level {
   Mat galerkin = nullptr;                   // l < L, Galerkin models: J_Pᵀ ∇²h^{l+1} J_P
   std::unique_ptr<LocalTrustRegion> tr;
   std::unique_ptr<SubspaceAcceleration> subspace;  // -tao_rmtr_subspace m > 0
-  Vec x0 = nullptr, restricted = nullptr;     // l < L: x₀^l and R ∇h^{l+1}
-  Vec correction = nullptr, trial = nullptr;  // l > 0: prolongated correction, x + s
-  Vec scratch = nullptr;                      // l < L: x − x₀
-  long objectives = 0;                        // coarse-correction trial points
-  bool correction_passed = true;              // l > 0: the last coarse correction was accepted
+  Vec x0 = nullptr, restricted = nullptr;          // l < L: x₀^l and R ∇h^{l+1}
+  Vec correction = nullptr, trial = nullptr;       // l > 0: prolongated correction, x + s
+  Vec scratch = nullptr;                           // l < L: x − x₀
+  Vec anchor = nullptr;           // l < L, -tao_rmtr_coarse_start iterate: the level's own iterate,
+  bool anchored = false;          // once it has one
+  long objectives = 0;            // coarse-correction trial points
+  bool correction_passed = true;  // l > 0: the last coarse correction was accepted
   RmtrLevelStatistics stats;
 };
 
@@ -110,6 +124,7 @@ struct RmtrContext {
   MultilevelObjective* hierarchy = nullptr;
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0, coarse_model = kFirstOrder;
+  PetscInt coarse_start = kProjected;
   char smoother_pc[64] = "none";
   PetscInt hessian_lag = 0, fmg_cycles = 1000, subspace = 0, retries = 0;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
@@ -138,6 +153,7 @@ void destroy_levels(RmtrContext& c) {
     VecDestroy(&lv.correction);
     VecDestroy(&lv.trial);
     VecDestroy(&lv.scratch);
+    VecDestroy(&lv.anchor);
   }
   c.levels.clear();
 }
@@ -175,6 +191,7 @@ PetscErrorCode setup(Tao tao) {
       PetscCall(c->hierarchy->create_vector(h, &lv.x0));
       PetscCall(VecDuplicate(lv.x0, &lv.restricted));
       PetscCall(VecDuplicate(lv.x0, &lv.scratch));
+      if (c->coarse_start == kIterate) PetscCall(VecDuplicate(lv.x0, &lv.anchor));
       PetscCall(c->hierarchy->create_hessian(h, &lv.H));
       lv.model = std::make_unique<CoarseLevelModel>(c->hierarchy->level_objective(h));
       lv.objective = lv.model.get();
@@ -277,7 +294,10 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
 
   // Coarse-level correction.
   Level& lc = c.levels[l - 1];
-  PetscCall(project(c, l, lv.tr->solution(), lc.x0));
+  if (lc.anchored)
+    PetscCall(VecCopy(lc.anchor, lc.x0));
+  else
+    PetscCall(project(c, l, lv.tr->solution(), lc.x0));
   PetscCall(transfer(c, l).restrict_gradient(lc.x0, lv.tr->gradient(), lc.restricted));
   PetscReal rg, f0;
   PetscCall(VecNorm(lc.restricted, NORM_2, &rg));
@@ -292,6 +312,8 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       f0 = 0.0;
     } else {
       PetscCall(lc.model->initialize(lc.x0, lc.restricted, &f0));
+      c.stats.max_coarse_start_energy =
+          std::max<double>(c.stats.max_coarse_start_energy, std::abs(f0));
     }
     PetscCall(lc.tr->start(lc.x0, &f0, lc.restricted));
     attempted = lc.tr->finite();  // a projected state outside the material's domain: skip
@@ -339,6 +361,10 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
       }
     }
     if (coarse_reduction > 0.0) lv.correction_passed = rho > c.params.eta1;
+    if (lc.anchor) {  // the coarse level's iterate: where its accepted correction ended
+      PetscCall(VecCopy(rho > c.params.eta1 ? lc.tr->solution() : lc.x0, lc.anchor));
+      lc.anchored = true;
+    }
     if (rho > c.params.eta1) {
       PetscCall(lv.tr->accept_trial());
       ++lv.stats.coarse_accepted;
@@ -402,7 +428,7 @@ PetscErrorCode fmg_solve_level(Tao tao, RmtrContext& c, int l, std::vector<long>
   PetscCall(TaoGetTolerances(tao, &gatol, &grtol, &gttol));
   const PetscReal g0 = lv.tr->gradient_norm(), tolerance = std::max(gatol, gttol * g0);
   StoppingRule rule = c.stopping;
-  rule.reset_floor();
+  rule.reset();
   if (lv.subspace) lv.subspace->reset();
   PetscReal delta = c.delta0, xnorm, dx;
   Vec previous;  // not lv.scratch: the cycle uses it
@@ -411,7 +437,7 @@ PetscErrorCode fmg_solve_level(Tao tao, RmtrContext& c, int l, std::vector<long>
   while (*cycles < c.fmg_cycles && lv.tr->gradient_norm() > tolerance) {
     PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
     if (rule.collapsed(delta, xnorm)) break;
-    const PetscReal f_old = lv.tr->value(), g_old = lv.tr->gradient_norm();
+    const PetscReal f_old = lv.tr->value();
     PetscCall(VecCopy(lv.tr->solution(), previous));
     PetscCall(cycle(tao, c, l, PETSC_INFINITY, &delta, successful));
     char note[96];
@@ -421,9 +447,7 @@ PetscErrorCode fmg_solve_level(Tao tao, RmtrContext& c, int l, std::vector<long>
     PetscCall(VecAXPY(previous, -1.0, lv.tr->solution()));
     PetscCall(VecNorm(previous, NORM_2, &dx));
     PetscCall(VecNorm(lv.tr->solution(), NORM_2, &xnorm));
-    if (f < f_old &&
-        rule.stagnated(delta, f_old - f, f, dx, xnorm, lv.tr->gradient_norm() / g_old))
-      break;
+    if (f < f_old && rule.stagnated(delta, f_old - f, f, dx, xnorm, lv.tr->gradient_norm())) break;
     if (rule.at_floor(tao, f_old - f, lv.objective->evaluation_error(), lv.tr->gradient_norm(), g0))
       break;
   }
@@ -468,6 +492,10 @@ PetscErrorCode fmg_start(Tao tao, RmtrContext& c, PetscReal f_fine, bool* moved,
       PetscFunctionReturn(0);  // a projected state outside the material's domain
     PetscInt k = 0;
     PetscCall(fmg_solve_level(tao, c, l, successful, &k));
+    if (lv.anchor) {  // the level's own solution is its iterate for the V-cycles above
+      PetscCall(VecCopy(lv.tr->solution(), lv.anchor));
+      lv.anchored = true;
+    }
     c.stats.fmg_cycles += k;
     if (c.monitor)
       PetscCall(PetscPrintf(comm,
@@ -522,11 +550,12 @@ PetscErrorCode solve(Tao tao) {
     lv.tr->reset_counters();
     lv.objectives = 0;
     lv.stats.coarse_accepted = lv.stats.coarse_rejected = 0;
+    lv.anchored = false;  // a coarse iterate of the previous solve need not fit this one's start
   }
   c->stats = RmtrStatistics{};
   c->stats.levels.resize(c->levels.size());
   c->limiting = false;
-  c->stopping.reset_floor();
+  c->stopping.reset();
   if (top.subspace) top.subspace->reset();
   tao->reason = TAO_CONTINUE_ITERATING;
   // Iteration 0 is the given iterate, also when the full-multigrid start moves it: tolerances
@@ -578,7 +607,7 @@ PetscErrorCode solve(Tao tao) {
       c->stopping.end_collapsed(tao, top.tr->gradient_norm(), g0, &c->limiting);
       break;
     }
-    const PetscReal f_old = top.tr->value(), g_old = top.tr->gradient_norm();
+    const PetscReal f_old = top.tr->value();
     PetscCall(VecCopy(top.tr->solution(), previous));
     c->cycle_accepted = c->cycle_rejected = 0;
     std::vector<long> successful(c->levels.size(), 0);
@@ -606,7 +635,7 @@ PetscErrorCode solve(Tao tao) {
       PetscCall(VecAXPY(previous, -1.0, top.tr->solution()));
       PetscCall(VecNorm(previous, NORM_2, &dx));
       PetscCall(VecNorm(top.tr->solution(), NORM_2, &xnorm_new));
-      if (c->stopping.stagnated(delta, f_old - f, f, dx, xnorm_new, gnorm / g_old))
+      if (c->stopping.stagnated(delta, f_old - f, f, dx, xnorm_new, gnorm))
         c->stopping.end_stagnated(tao, gnorm, g0);
     }
     if (tao->reason == TAO_CONTINUE_ITERATING &&
@@ -636,6 +665,11 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsEnum("-tao_rmtr_projection", "projection of iterates to coarser levels", "",
                              kProjectionNames, static_cast<PetscEnum>(c->projection),
                              reinterpret_cast<PetscEnum*>(&c->projection), nullptr));
+  PetscCall(PetscOptionsEnum("-tao_rmtr_coarse_start",
+                             "x0 of a coarse level: the projection of the fine iterate, or the "
+                             "coarse level's own iterate from its last visit",
+                             "", kCoarseStartNames, static_cast<PetscEnum>(c->coarse_start),
+                             reinterpret_cast<PetscEnum*>(&c->coarse_start), nullptr));
   PetscCall(PetscOptionsEnum("-tao_rmtr_coarse_model",
                              "coarse-level model: first_order (eq. 4.3) or galerkin (J_P^T H J_P)",
                              "", kCoarseModelNames, static_cast<PetscEnum>(c->coarse_model),
@@ -721,10 +755,12 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
       viewer,
       "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT ", mu2 = %" PetscInt_FMT
       ", coarsest %" PetscInt_FMT " step(s) of %s, smoother %s (%" PetscInt_FMT
-      " iterations or a model gradient of %g gatol, PC %s), projection %s, %s coarse models\n",
+      " iterations or a model gradient of %g gatol, PC %s), projection %s, %s coarse models "
+      "from the %s\n",
       n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1, c->mu2, c->coarse_max_it,
       kQpNames[c->coarse_qp], kQpNames[c->smoother_qp], c->stcg_max_it, (double)c->stcg_target,
-      c->smoother_pc, kProjectionNames[c->projection], kCoarseModelNames[c->coarse_model]));
+      c->smoother_pc, kProjectionNames[c->projection], kCoarseModelNames[c->coarse_model],
+      c->coarse_start == kIterate ? "coarse iterate" : "projection"));
   PetscCall(PetscViewerASCIIPrintf(
       viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",
       (double)c->delta0, (double)c->params.eta1, (double)c->params.eta2, (double)c->params.gamma1,
@@ -812,6 +848,7 @@ RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
   max_correction_ratio = std::max(max_correction_ratio, o.max_correction_ratio);
   max_consistency_error = std::max(max_consistency_error, o.max_consistency_error);
   max_projection_misfit = std::max(max_projection_misfit, o.max_projection_misfit);
+  max_coarse_start_energy = std::max(max_coarse_start_energy, o.max_coarse_start_energy);
   assembly_work_units += o.assembly_work_units;
   qp_work_units += o.qp_work_units;
   return *this;

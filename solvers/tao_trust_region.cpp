@@ -24,8 +24,8 @@
 
 #include "mlshell/local_trust_region.hpp"
 #include "mlshell/trust_region.hpp"
-#include "tao_objective.hpp"
 #include "mlshell/vertex_patch_pc.hpp"
+#include "tao_objective.hpp"
 #include "tao_registration.hpp"
 
 namespace mlshell {
@@ -78,7 +78,7 @@ PetscErrorCode solve(Tao tao) {
   PetscCall(tr.start(tao->solution));
   const PetscReal g0 = tr.gradient_norm();
   ctx->limiting = false;
-  ctx->stopping.reset_floor();
+  ctx->stopping.reset();
   tao->reason = TAO_CONTINUE_ITERATING;
   if (!tr.finite()) {  // nothing to iterate on: say so instead of producing NaN
     tao->reason = TAO_DIVERGED_NAN;
@@ -96,7 +96,7 @@ PetscErrorCode solve(Tao tao) {
       break;
     }
     TrustRegionIteration it;
-    const PetscReal f_before = tr.value(), g_before = tr.gradient_norm();
+    const PetscReal f_before = tr.value();
     PetscCall(tr.iterate(ctx->params, &delta, &it));
     tao->ksp_its += it.qp.iterations;
     tao->ksp_tot_its += it.qp.iterations;
@@ -110,7 +110,7 @@ PetscErrorCode solve(Tao tao) {
     if (tao->reason == TAO_CONTINUE_ITERATING && it.accepted) {
       PetscCall(VecNorm(tr.solution(), NORM_2, &xnorm));
       if (ctx->stopping.stagnated(delta, it.decrease, tr.value(), it.step_norm, xnorm,
-                                  tr.gradient_norm() / g_before))
+                                  tr.gradient_norm()))
         ctx->stopping.end_stagnated(tao, tr.gradient_norm(), g0);
     }
     if (tao->reason == TAO_CONTINUE_ITERATING &&

@@ -53,7 +53,8 @@ struct TrustRegionParameters {
 /// How a trust-region solve (TR, or RMTR on its finest level) ends besides TAO's tolerances
 /// (paper eq. 7.1 and §7.2).
 ///   - Stagnation, the second part of (7.1): once Δ > 1e15 (Newton's regime), an accepted
-///     iteration with |Δf| ≤ s·|f| or ‖Δx‖ ≤ s·‖x‖ that lowered ‖g‖ by less than a tenth. The
+///     iteration with |Δf| ≤ s·|f| or ‖Δx‖ ≤ s·‖x‖, unless ‖g‖ is still falling: some iteration
+///     among the last `stagnation_window` took it below 0.9 times its lowest value before. The
 ///     paper's absolute 1e-12 is relative here, so that it holds for any units and size. A
 ///     large radius is no proof of Newton's regime: an iteration that converges linearly (RMTR's
 ///     V-cycles, a poor Hessian) inflates Δ by every success while |Δf| ~ ‖g‖²/λ falls below
@@ -67,7 +68,7 @@ struct TrustRegionParameters {
 ///     and not halving: the gradient itself is noise there (limiting accuracy).
 struct StoppingRule {
   PetscReal stagnation = 1e-12, min_radius = 1e-14, limiting_factor = 100.0;
-  PetscInt floor_iterations = 20;
+  PetscInt floor_iterations = 20, stagnation_window = 3;
   /// Feeds one outer iteration (decrease df of f, its evaluation error, ‖g‖, ‖g₀‖); true when
   /// the solve has meandered at the floor long enough (then call end_at_floor).
   bool at_floor(Tao tao, PetscReal df, PetscReal f_error, PetscReal gnorm, PetscReal g0);
@@ -76,11 +77,18 @@ struct StoppingRule {
     floor_count_ = 0;
     floor_decrease_ = 0.0;
   }
-  /// `gradient_ratio`: ‖g‖ after the iteration over ‖g‖ before it. An iteration that still
-  /// lowers ‖g‖ by a tenth has not stagnated: below the resolution of f, the gradient shows
-  /// the progress (V-cycles that contract ‖g‖ by 0.5 lower f by less than 1e-12·|f| there).
+  /// Forgets the solve before: call at the start of each.
+  void reset() {
+    reset_floor();
+    best_gnorm_ = PETSC_INFINITY;
+    since_best_ = 0;
+  }
+  /// Feeds one accepted iteration (‖g‖ = `gnorm` after it). While ‖g‖ still falls it has not
+  /// stagnated: below the resolution of f the gradient shows the progress (V-cycles that
+  /// contract ‖g‖ by 0.5 lower f by less than 1e-12·|f| there, and one of them may raise ‖g‖
+  /// a little), so the test looks at the lowest ‖g‖ over a window, not at one iteration.
   bool stagnated(PetscReal delta, PetscReal df, PetscReal f, PetscReal dx, PetscReal xnorm,
-                 PetscReal gradient_ratio) const;
+                 PetscReal gnorm);
   /// Sets tao->reason after stagnation at gradient norm `gnorm` (‖g₀‖ = `g0` at the start):
   /// TAO_CONVERGED_STEPTOL if ‖g‖ is within `limiting_factor` of the tolerance, else
   /// TAO_DIVERGED_USER (reported as DIVERGED_STAGNATION).
@@ -96,8 +104,10 @@ struct StoppingRule {
  private:
   PetscReal tolerance(Tao tao, PetscReal g0) const;
   PetscInt floor_count_ = 0;
-  PetscReal floor_gnorm_ = 0.0;     // ‖g‖ when the count started
-  PetscReal floor_decrease_ = 0.0;  // decrease of f since the count started
+  PetscReal floor_gnorm_ = 0.0;            // ‖g‖ when the count started
+  PetscReal floor_decrease_ = 0.0;         // decrease of f since the count started
+  PetscReal best_gnorm_ = PETSC_INFINITY;  // lowest ‖g‖ that was below 0.9 × the one before
+  PetscInt since_best_ = 0;                // accepted iterations since
 };
 
 /// Reads `<prefix>eta1`, `eta2`, `gamma1`, `gamma2` inside a PetscOptionsBegin/End block.

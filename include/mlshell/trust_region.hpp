@@ -51,6 +51,10 @@ struct RmtrStatistics {
   /// ‖S x₀^{l−1} − x^l‖ / ‖x^l‖ (eq. 4.6): which projection ran shows here (least squares is the
   /// smallest; a start that is not a projection of the fine iterate is of order 1).
   double max_projection_misfit = 0.0;
+  /// The largest |f^{l−1}(x₀^{l−1})| over the coarse starts of first-order models, the value of
+  /// the coarse energy where each coarse solve began: far above the solve's own energies when
+  /// a projected start distorts the coarse surface (-tao_rmtr_coarse_start).
+  double max_coarse_start_energy = 0.0;
   /// Sums the counts of another solve on the same levels (for totals over time steps).
   RmtrStatistics& operator+=(const RmtrStatistics& other);
 };

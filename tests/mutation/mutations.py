@@ -56,10 +56,14 @@ MUTATIONS = [
      "a slow solve that lowers f steadily by less than its noise per iteration is declared at "
      "the floor (converged at the limiting accuracy) far from its minimiser", ()),
     ("stagnation-ignores-gradient", "solvers/local_trust_region.cpp",
-     "if (!(delta > 1e15) || gradient_ratio < 0.9) return false;",
+     "if (!(delta > 1e15) || since_best_ < stagnation_window) return false;",
      "if (!(delta > 1e15)) return false;",
      "the stagnation test of (7.1) stops V-cycles that still contract ‖g‖ once f stops "
      "changing in its last bits", ()),
+    ("coarse-start-iterate-ignored", "solvers/tao_rmtr.cpp",
+     "  if (lc.anchored)\n", "  if (false)\n",
+     "-tao_rmtr_coarse_start iterate ignored: every coarse solve starts from the projection "
+     "of the fine iterate", ()),
     ("retries-ignored", "solvers/tao_rmtr.cpp",
      "      if (it.accepted || tries >= c.retries) break;", "      break;",
      "-tao_rmtr_retries ignored: a rejected smoothing step waits a V-cycle for the next", ()),

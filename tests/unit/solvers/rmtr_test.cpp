@@ -100,21 +100,25 @@ TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
   // Dogleg smoothing (the default), STCG preconditioned by vertex patches, and the same with
   // each level's Hessian kept for two accepted steps; each smoother also with Galerkin coarse
   // models, and the patch smoother with Galerkin models, a subspace step after each V-cycle and
-  // rejected smoothing steps retried (rmtr-patch-galerkin.yaml).
-  for (const char* smoother : {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin",
-                               "stcg-vpatch-galerkin", "stcg-vpatch-galerkin-subspace"})
+  // rejected smoothing steps retried (rmtr-patch-galerkin.yaml); Dogleg smoothing with coarse
+  // solves that start from the coarse levels' own iterates.
+  for (const char* smoother :
+       {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin", "stcg-vpatch-galerkin",
+        "stcg-vpatch-galerkin-subspace", "dogleg-iterate"})
     for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
       const std::string name = smoother;
       const bool patches = name.starts_with("stcg");
       const bool lag = name == "stcg-vpatch-lag2";
       const bool subspace = name.ends_with("subspace");
       const bool galerkin = name.ends_with("galerkin") || subspace;
-      ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
-                               {"-tao_rmtr_subspace", subspace ? "2" : "0"},
-                               {"-tao_rmtr_retries", subspace ? "3" : "0"},
-                               {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
-                               {"-tao_rmtr_hessian_lag", lag ? "2" : "0"},
-                               {"-tao_rmtr_coarse_model", galerkin ? "galerkin" : "first_order"}});
+      ScopedOptions smoothing(
+          {{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
+           {"-tao_rmtr_subspace", subspace ? "2" : "0"},
+           {"-tao_rmtr_retries", subspace ? "3" : "0"},
+           {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
+           {"-tao_rmtr_hessian_lag", lag ? "2" : "0"},
+           {"-tao_rmtr_coarse_start", name.ends_with("iterate") ? "iterate" : "projection"},
+           {"-tao_rmtr_coarse_model", galerkin ? "galerkin" : "first_order"}});
       const Scene scene = example(file, 2, 1);
       Outcome tr;
       {
@@ -167,14 +171,16 @@ TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
   // Record f after every V-cycle through TAO's convergence history; Dogleg smoothing, STCG
   // with vertex patches, and the same after a full-multigrid start (f₀ is the given iterate's
   // energy, the first V-cycle starts from the prolongated coarse solution), also with Galerkin
-  // coarse models, and with those, subspace steps after the V-cycles and retried smoothing steps.
-  for (const int variant : {0, 1, 2, 3, 4}) {
-    const bool patches = variant > 0;
+  // coarse models, and with those, subspace steps after the V-cycles and retried smoothing steps;
+  // Dogleg smoothing after a full-multigrid start, with coarse solves from the coarse iterates.
+  for (const int variant : {0, 1, 2, 3, 4, 5}) {
+    const bool patches = variant > 0 && variant < 5;
     ScopedOptions smoothing(
         {{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
          {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
          {"-tao_rmtr_fmg_cycles", variant >= 2 ? "1" : "0"},
-         {"-tao_rmtr_coarse_model", variant >= 3 ? "galerkin" : "first_order"},
+         {"-tao_rmtr_coarse_start", variant == 5 ? "iterate" : "projection"},
+         {"-tao_rmtr_coarse_model", variant == 3 || variant == 4 ? "galerkin" : "first_order"},
          {"-tao_rmtr_subspace", variant == 4 ? "2" : "0"},
          {"-tao_rmtr_retries", variant == 4 ? "3" : "0"}});
     RestingTrampoline t;
@@ -349,6 +355,27 @@ TEST(Rmtr, TheProjectionOptionChoosesTheCoarseStart) {
   EXPECT_GT(misfit["restriction"], 2 * misfit["reverse"]);
 }
 
+// -tao_rmtr_coarse_start iterate: a coarse solve starts from the coarse level's own iterate (its
+// full-multigrid solution, then where its accepted corrections ended), not from the projection
+// of the fine iterate. The drooping cloth at 1,083 dofs, Dogleg smoothing: the reverse-subdivision
+// projection of the hanging cloth distorts the coarse surfaces, whose energies at those starts
+// reach many times the solution's (|f| ≈ 0.5 J; measured 6.8e15 J), while the coarse iterates
+// stay near the coarse solutions (0.49 J); both solves converge (to nearby minima, -0.504026 J
+// and -0.504049 J: the hanging cloth has several).
+TEST(Rmtr, CoarseSolvesStartFromTheCoarseIteratesOnRequest) {
+  const Scene scene = example("drooping.yaml", 2, 1);
+  Outcome run[2];
+  for (const int k : {0, 1}) {
+    ScopedOptions start({{"-tao_rmtr_coarse_start", k ? "iterate" : "projection"}});
+    run[k] = solve(scene, std::string("coarse-start") + std::to_string(k));
+    ASSERT_EQ(run[k].status, 0) << k;
+  }
+  const double projected = run[0].rmtr.max_coarse_start_energy;
+  const double iterate = run[1].rmtr.max_coarse_start_energy;
+  EXPECT_GT(projected, 100.0 * std::abs(run[0].energy)) << projected;
+  EXPECT_LT(iterate, 2.0 * std::abs(run[1].energy)) << iterate;
+}
+
 TEST(Rmtr, CoarseLevelsSaveFineHessians) {
   // The point of the coarse levels: on the trampoline (1,083 dofs) RMTR with 3 levels reaches
   // the minimiser with fewer Hessian assemblies on the finest level than single-level TR, and
@@ -423,8 +450,8 @@ TEST(Rmtr, RetriedSmoothingStepsSaveVCyclesOnHangingCloth) {
   }
   const long cycles[2] = {run[0].rmtr.cycles + run[0].rmtr.fmg_cycles,
                           run[1].rmtr.cycles + run[1].rmtr.fmg_cycles};
-  EXPECT_LT(cycles[1], 0.9 * cycles[0]) << cycles[1] << " V-cycles with retries, " << cycles[0]
-                                         << " without";
+  EXPECT_LT(cycles[1], 0.9 * cycles[0])
+      << cycles[1] << " V-cycles with retries, " << cycles[0] << " without";
 }
 
 // -tao_rmtr_stcg_target: STCG stops once its model gradient ‖g + Hs‖ is a tenth of the tolerance
@@ -517,14 +544,17 @@ TEST(Rmtr, RejectsNonsenseOptionsWithTheirNames) {
   MultilevelProblem problem(scene, levels, CageFrame::from(scene.geometry));
   Tao tao;
   register_trust_region_tao_types();
-  for (auto [name, value, needle] : {std::tuple{"-tao_rmtr_eta1", "0.9", "-tao_rmtr_eta1 = 0.9"},
-                                     {"-tao_rmtr_eps_delta", "2", "eps_delta"},
-                                     {"-tao_rmtr_mu1", "-1", "mu1"},
-                                     {"-tao_rmtr_fmg_cycles", "-2", "-tao_rmtr_fmg_cycles"},
-                                     {"-tao_rmtr_retries", "-1", "-tao_rmtr_retries"},
-                                     {"-tao_rmtr_subspace", "21", "-tao_rmtr_subspace"},
-                                     {"-tao_rmtr_stagnation", "-1", "-tao_rmtr_stagnation"},
-                                     {"-tao_rmtr_projection", "foo", "-tao_rmtr_projection"}}) {
+  for (auto [name, value, needle] :
+       {std::tuple{"-tao_rmtr_eta1", "0.9", "-tao_rmtr_eta1 = 0.9"},
+        {"-tao_rmtr_eps_delta", "2", "eps_delta"},
+        {"-tao_rmtr_mu1", "-1", "mu1"},
+        {"-tao_rmtr_fmg_cycles", "-2", "-tao_rmtr_fmg_cycles"},
+        {"-tao_rmtr_retries", "-1", "-tao_rmtr_retries"},
+        {"-tao_rmtr_subspace", "21", "-tao_rmtr_subspace"},
+        {"-tao_rmtr_stagnation", "-1", "-tao_rmtr_stagnation"},
+        {"-tao_rmtr_projection", "foo", "-tao_rmtr_projection"},
+        {"-tao_rmtr_coarse_start", "fine", "-tao_rmtr_coarse_start"},
+        {"-tao_rmtr_stagnation_window", "0", "-tao_rmtr_stagnation_window"}}) {
     TaoCreate(PETSC_COMM_SELF, &tao);
     TaoSetType(tao, "rmtr");
     PetscOptionsSetValue(nullptr, name, value);
