@@ -228,7 +228,7 @@ TEST(MpiEquivalence, SubspaceStepsAndRetriesReachTheSameStateOnOneAndTwoRanks) {
                                           {"-tao_rmtr_smoother_pc", "vpatch"},
                                           {"-tao_rmtr_stcg_max_it", "100"},
                                           {"-tao_rmtr_coarse_model", "galerkin"},
-                                          {"-tao_rmtr_subspace", "2"},
+                                          {"-tao_rmtr_subspace", "5"},
                                           {"-tao_rmtr_retries", "3"}},
                                          "subspace", "drooping.yaml"),
             2);

@@ -113,7 +113,7 @@ TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
       const bool galerkin = name.ends_with("galerkin") || subspace;
       ScopedOptions smoothing(
           {{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
-           {"-tao_rmtr_subspace", subspace ? "2" : "0"},
+           {"-tao_rmtr_subspace", subspace ? "5" : "0"},
            {"-tao_rmtr_retries", subspace ? "3" : "0"},
            {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
            {"-tao_rmtr_hessian_lag", lag ? "2" : "0"},
@@ -181,7 +181,7 @@ TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
          {"-tao_rmtr_fmg_cycles", variant >= 2 ? "1" : "0"},
          {"-tao_rmtr_coarse_start", variant == 5 ? "iterate" : "projection"},
          {"-tao_rmtr_coarse_model", variant == 3 || variant == 4 ? "galerkin" : "first_order"},
-         {"-tao_rmtr_subspace", variant == 4 ? "2" : "0"},
+         {"-tao_rmtr_subspace", variant == 4 ? "5" : "0"},
          {"-tao_rmtr_retries", variant == 4 ? "3" : "0"}});
     RestingTrampoline t;
     StepSolver solver(t.problem.level(2), &t.problem);
