@@ -19,10 +19,9 @@
 // -tao_rmtr_stagnation relative to |f| and ‖x‖ while Δ > 1e15, with no V-cycle among the
 // last -tao_rmtr_stagnation_window (3) taking ‖g‖ below 0.9 times its lowest before (eq. 7.1,
 // second part: CONVERGED_STEPTOL if ‖g‖ is within -tao_rmtr_limiting_factor (100) of the
-// tolerance, else
-// DIVERGED_STAGNATION, since V-cycles that converge linearly inflate Δ too), or the radius
-// shrinking below -tao_rmtr_min_radius · max(1, ‖x‖): CONVERGED_LIMITING_ACCURACY if ‖g‖ is
-// within that factor of the tolerance, else DIVERGED_TR_REDUCTION.
+// tolerance, else DIVERGED_STAGNATION, since V-cycles that converge linearly inflate Δ too), or
+// the radius shrinking below -tao_rmtr_min_radius · max(1, ‖x‖): CONVERGED_LIMITING_ACCURACY
+// if ‖g‖ is within that factor of the tolerance, else DIVERGED_TR_REDUCTION.
 //
 // Options (Table 2 defaults):
 //   -tao_rmtr_levels <all>           number of levels used (the finest ones of the hierarchy)

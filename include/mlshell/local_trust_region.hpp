@@ -106,7 +106,7 @@ struct StoppingRule {
   PetscInt floor_count_ = 0;
   PetscReal floor_gnorm_ = 0.0;            // ‖g‖ when the count started
   PetscReal floor_decrease_ = 0.0;         // decrease of f since the count started
-  PetscReal best_gnorm_ = PETSC_INFINITY;  // lowest ‖g‖ that was below 0.9 × the one before
+  PetscReal best_gnorm_ = PETSC_INFINITY;  // the last ‖g‖ below 0.9 × the lowest before it
   PetscInt since_best_ = 0;                // accepted iterations since
 };
 
