@@ -60,6 +60,10 @@ MUTATIONS = [
      "if (!(delta > 1e15)) return false;",
      "the stagnation test of (7.1) stops V-cycles that still contract ‖g‖ once f stops "
      "changing in its last bits", ()),
+    ("stagnation-window-one", "solvers/local_trust_region.cpp",
+     "since_best_ < stagnation_window", "since_best_ < 1",
+     "the stagnation test's window shrunk to one iteration: a V-cycle that raises ‖g‖ a little "
+     "ends a solve that is still converging", ()),
     ("coarse-start-iterate-ignored", "solvers/tao_rmtr.cpp",
      "  if (lc.anchored)\n", "  if (false)\n",
      "-tao_rmtr_coarse_start iterate ignored: every coarse solve starts from the projection "
