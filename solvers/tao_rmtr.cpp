@@ -243,26 +243,24 @@ PetscErrorCode smooth(Tao tao, RmtrContext& c, int l, int steps, PetscReal fine_
                       PetscReal* delta, std::vector<long>& successful, bool* go_on) {
   Level& lv = c.levels[l];
   PetscFunctionBeginUser;
-  *go_on = true;
-  for (int i = 0; i < steps; ++i) {
+  const auto done = [&] { return lv.tr->gradient_norm() <= tao->gatol || *delta <= 0.0; };
+  for (PetscInt i = 0, tries = 0; i < steps && !done();) {
+    TrustRegionIteration it;
+    PetscCall(lv.tr->iterate(c.params, delta, &it));
+    tao->ksp_its += it.qp.iterations;
+    tao->ksp_tot_its += it.qp.iterations;
+    if (it.accepted) ++successful[l];
+    PetscCall(cap_radius(c, l, fine_radius, delta));
     // A rejected step is retried at once with the shrunk radius, up to -tao_rmtr_retries times,
     // instead of waiting a whole V-cycle for the next smoothing step.
-    for (PetscInt tries = 0;; ++tries) {
-      if (lv.tr->gradient_norm() <= tao->gatol || *delta <= 0.0) {
-        *go_on = false;
-        break;
-      }
-      TrustRegionIteration it;
-      PetscCall(lv.tr->iterate(c.params, delta, &it));
-      tao->ksp_its += it.qp.iterations;
-      tao->ksp_tot_its += it.qp.iterations;
-      if (it.accepted) ++successful[l];
-      PetscCall(cap_radius(c, l, fine_radius, delta));
-      if (it.accepted || tries >= c.retries) break;
+    if (!it.accepted && tries < c.retries) {
+      ++tries;
+    } else {
+      ++i;
+      tries = 0;
     }
-    if (!*go_on) break;
   }
-  if (lv.tr->gradient_norm() <= tao->gatol || *delta <= 0.0) *go_on = false;
+  *go_on = !done();
   PetscFunctionReturn(0);
 }
 

@@ -69,7 +69,7 @@ MUTATIONS = [
      "-tao_rmtr_coarse_start iterate ignored: every coarse solve starts from the projection "
      "of the fine iterate", ()),
     ("retries-ignored", "solvers/tao_rmtr.cpp",
-     "      if (it.accepted || tries >= c.retries) break;", "      break;",
+     "    if (!it.accepted && tries < c.retries) {", "    if (false) {",
      "-tao_rmtr_retries ignored: a rejected smoothing step waits a V-cycle for the next", ()),
     ("subspace-hard-case-inside", "solvers/subspace_acceleration.cpp",
      "      y(0) += tau;\n", "",

@@ -156,9 +156,9 @@ namespace {
 /// `options` set, on 2 ranks and on 1 (each rank alone), and expects the same minimiser to the
 /// solver tolerance (the taut trampoline has a unique one). Returns the serial solve's
 /// iterations.
-long expect_same_trampoline_state(
-    int refine, int steps, std::initializer_list<std::pair<const char*, const char*>> options,
-    const std::string& tag, const char* file = "trampoline.yaml") {
+long expect_same_state(int refine, int steps,
+                       std::initializer_list<std::pair<const char*, const char*>> options,
+                       const std::string& tag, const char* file = "trampoline.yaml") {
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   const auto dir = std::filesystem::temp_directory_path() / ("mlshell_mpi_" + tag);
@@ -182,39 +182,38 @@ long expect_same_trampoline_state(
 }  // namespace
 
 TEST(MpiEquivalence, LocalTrustRegionReachesTheSameStateOnOneAndTwoRanks) {
-  EXPECT_GT(expect_same_trampoline_state(1, 2, {{"-tao_type", "tr"}}, "tr"), 2);
+  EXPECT_GT(expect_same_state(1, 2, {{"-tao_type", "tr"}}, "tr"), 2);
 }
 
 // RMTR with the vertex-patch smoother (patches truncated at rank boundaries on 2 ranks, so the
 // preconditioner differs there) reaches the same minimiser.
 TEST(MpiEquivalence, PatchSmoothedRmtrReachesTheSameStateOnOneAndTwoRanks) {
-  expect_same_trampoline_state(
-      2, 1, {{"-tao_rmtr_smoother_qp", "stcg"}, {"-tao_rmtr_smoother_pc", "vpatch"}}, "vpatch");
+  expect_same_state(2, 1, {{"-tao_rmtr_smoother_qp", "stcg"}, {"-tao_rmtr_smoother_pc", "vpatch"}},
+                    "vpatch");
 }
 
 // The full-multigrid start of petsc-options/rmtr-patch.yaml: every coarser level's own problem
 // solved on the distributed levels, then the prolongated start on the finest.
 TEST(MpiEquivalence, FullMultigridStartReachesTheSameStateOnOneAndTwoRanks) {
-  expect_same_trampoline_state(2, 1,
-                               {{"-tao_rmtr_smoother_qp", "stcg"},
-                                {"-tao_rmtr_smoother_pc", "vpatch"},
-                                {"-tao_rmtr_fmg_cycles", "1"}},
-                               "fmg");
+  expect_same_state(2, 1,
+                    {{"-tao_rmtr_smoother_qp", "stcg"},
+                     {"-tao_rmtr_smoother_pc", "vpatch"},
+                     {"-tao_rmtr_fmg_cycles", "1"}},
+                    "fmg");
 }
 
 // Galerkin coarse models (-tao_rmtr_coarse_model galerkin): J_Pᵀ H J_P formed from the
 // distributed fine Hessians (MatPtAP across the rank boundary), with the patch smoother and with
 // Dogleg smoothing, V-cycles from the given iterate.
 TEST(MpiEquivalence, GalerkinCoarseModelsReachTheSameStateOnOneAndTwoRanks) {
-  expect_same_trampoline_state(2, 1,
-                               {{"-tao_rmtr_smoother_qp", "stcg"},
-                                {"-tao_rmtr_smoother_pc", "vpatch"},
-                                {"-tao_rmtr_coarse_model", "galerkin"},
-                                {"-tao_rmtr_fmg_cycles", "0"}},
-                               "galerkin-vpatch");
-  expect_same_trampoline_state(
-      2, 1, {{"-tao_rmtr_coarse_model", "galerkin"}, {"-tao_rmtr_fmg_cycles", "0"}},
-      "galerkin-dogleg");
+  expect_same_state(2, 1,
+                    {{"-tao_rmtr_smoother_qp", "stcg"},
+                     {"-tao_rmtr_smoother_pc", "vpatch"},
+                     {"-tao_rmtr_coarse_model", "galerkin"},
+                     {"-tao_rmtr_fmg_cycles", "0"}},
+                    "galerkin-vpatch");
+  expect_same_state(2, 1, {{"-tao_rmtr_coarse_model", "galerkin"}, {"-tao_rmtr_fmg_cycles", "0"}},
+                    "galerkin-dogleg");
 }
 
 // petsc-options/rmtr-patch-galerkin.yaml on the drooping cloth at 363 dofs: Galerkin models from
@@ -223,13 +222,13 @@ TEST(MpiEquivalence, GalerkinCoarseModelsReachTheSameStateOnOneAndTwoRanks) {
 // (At this size every solver tried, RMTR, TR and bnls on 1 and 2 ranks, reaches the same
 // minimum, −0.4965197 J; at 1,083 dofs the hanging cloth has nearby ones.)
 TEST(MpiEquivalence, SubspaceStepsAndRetriesReachTheSameStateOnOneAndTwoRanks) {
-  EXPECT_GT(expect_same_trampoline_state(1, 1,
-                                         {{"-tao_rmtr_smoother_qp", "stcg"},
-                                          {"-tao_rmtr_smoother_pc", "vpatch"},
-                                          {"-tao_rmtr_stcg_max_it", "100"},
-                                          {"-tao_rmtr_coarse_model", "galerkin"},
-                                          {"-tao_rmtr_subspace", "5"},
-                                          {"-tao_rmtr_retries", "3"}},
-                                         "subspace", "drooping.yaml"),
+  EXPECT_GT(expect_same_state(1, 1,
+                              {{"-tao_rmtr_smoother_qp", "stcg"},
+                               {"-tao_rmtr_smoother_pc", "vpatch"},
+                               {"-tao_rmtr_stcg_max_it", "100"},
+                               {"-tao_rmtr_coarse_model", "galerkin"},
+                               {"-tao_rmtr_subspace", "5"},
+                               {"-tao_rmtr_retries", "3"}},
+                              "subspace", "drooping.yaml"),
             2);
 }
