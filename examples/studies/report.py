@@ -114,7 +114,8 @@ class Report:
         rows = [r for r in rows if r.get("preset") in (None, "", "denim")]
         self.add("## Tables 3–5: iterations per step, dt = 1\n\nEach cell: mlshell / paper. "
                  "TR is the single-level trust region with Dogleg; RMTR uses Dogleg smoothing "
-                 "(mlshell's default). Tolerance (7.1): \\|g\\| < 1e-7.\n")
+                 "(mlshell's built-in default). Tolerance (7.1): \\|g\\| < 1e-7. Every study ignores "
+                 "the scenes' own solver files (the trampoline's is `rmtr-patch`).\n")
         tr = [r for r in rows if r["solver"] == "tr"]
         dofs = sorted({int(r["refine"]) for r in tr})
         body = []
@@ -397,7 +398,7 @@ class Report:
                                                                               solver=solver)),
                                        ok))
         self.add("## Parallel: 1 vs 2 ranks\n\nOne step of dt = 1; times in seconds by "
-                 "`-log_view` stage. `rmtr`: Dogleg smoothing (the default); `rmtr-patch`: "
+                 "`-log_view` stage. `rmtr`: Dogleg smoothing (the built-in default); `rmtr-patch`: "
                  "full-multigrid start and vertex-patch smoothing. *Shared*: the wall time of "
                  "one of two 1-rank copies run at once, which share the memory bandwidth and "
                  "caches as 2 ranks do; *ceiling* = 2 × 1-rank wall / shared wall, the speedup "
@@ -446,7 +447,8 @@ class Report:
                      "Trampoline, one step of dt = 1, \\|g\\| < 1e-7. Each cell: V-cycles (RMTR) "
                      "or iterations · wall time · peak resident memory of the largest rank. "
                      "`rmtr`: Dogleg smoothing (a factorisation per smoothing step) after the "
-                     "full-multigrid start (mlshell's default); `rmtr-patch`: the start, then "
+                     "full-multigrid start (mlshell's built-in default; the trampoline scene's own "
+                     "solver is `rmtr-patch`); `rmtr-patch`: the start, then "
                      "vertex-patch ST-CG smoothing (no factorisation above the coarsest level); "
                      "`rmtr-patch-vcycles`: the same V-cycles from the given iterate; "
                      "`rmtr-galerkin`: `rmtr` with Galerkin coarse models (JᵀHJ of the finer "

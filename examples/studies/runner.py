@@ -104,11 +104,13 @@ class Runner:
         scene_file = self.scene_path(scene)
         if scene_text is not None:
             scene_file = folder / f"{scene}.yaml"
-            scene_file.write_text(scene_text)
+            # The copy lies in a run folder: the scene's solver file by its path in the sources
+            # (it must exist to parse, although every run ignores it).
+            scene_file.write_text(scene_text.replace("options_file: ../", f"options_file: {SOURCE}/"))
         command = ["mpiexec", "--oversubscribe", *binding, "-n", str(ranks), str(self.mlshell),
                    str(scene_file), "-mlshell_steps", "1", "-mlshell_dt", repr(dt),
                    "-mlshell_refine", str(refine), "-mlshell_output_dir", str(folder),
-                   "-mlshell_quiet", *map(str, options)]
+                   "-mlshell_quiet", "-mlshell_scene_solver", "false", *map(str, options)]
         if log_view:
             command += ["-log_view", f":{folder / 'log_view.txt'}"]
         (folder / "command.txt").write_text(" ".join(command) + "\n")

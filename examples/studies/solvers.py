@@ -1,7 +1,9 @@
 """The solver configurations the studies compare, each a name, a description and PETSc options.
 
 Tolerances are set by `with_tolerance`, so that every solver stops on the same test: the
-gradient norm ‖∇f‖₂ (TAO gatol, SNES atol; paper eq. 7.1 uses 1e-7).
+gradient norm ‖∇f‖₂ (TAO gatol, SNES atol; paper eq. 7.1 uses 1e-7). Every run ignores the
+scene's own default solver (`-mlshell_scene_solver false`, runner.py), so a name below means
+the same configuration on every scene.
 """
 
 _HYPRE = ["-pc_hypre_type", "boomeramg", "-pc_hypre_boomeramg_nodal_coarsen", "1",
@@ -14,7 +16,7 @@ def _bnk(prefix_options):
 
 
 SOLVERS = {
-    "rmtr": ("RMTR, Dogleg smoothing (mlshell default)", ["-tao_type", "rmtr"]),
+    "rmtr": ("RMTR, Dogleg smoothing (mlshell's built-in default)", ["-tao_type", "rmtr"]),
     "rmtr-paper": ("RMTR, 10 ST-CG smoothing steps, Dogleg coarse (paper §7.3)",
                    ["-options_file", "@petsc-options/rmtr-paper.yaml"]),
     "rmtr-patch": ("RMTR, full-multigrid start, vertex-patch-preconditioned ST-CG smoothing "

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <regex>
 #include <string>
@@ -49,7 +50,10 @@ const char* kUsage =
     "  -mlshell_step_solver snes   solve grad f = 0 with PETSc SNES (default newtonls, MUMPS LU;\n"
     "                              -snes_*, -ksp_*, -pc_* options) instead of TAO\n"
     "  -options_file FILE          PETSc options from FILE (plain or .yaml); the scene may name\n"
-    "                              one (solver.options_file); the command line wins over both\n"
+    "                              its default one (solver.options_file), which FILE replaces;\n"
+    "                              the command line's own options win over both\n"
+    "  -mlshell_scene_solver false ignore the scene's solver.options_file (mlshell's built-in\n"
+    "                              defaults and the command line only)\n"
     "\n"
     "Solver options (TAO, prefix -tao_): default -tao_type rmtr, the recursive multilevel trust\n"
     "  region on all levels 0..geometry.refine, with Dogleg on every level (MUMPS LDL^T) after a\n"
@@ -123,6 +127,34 @@ struct OptionErrors {
   };
 };
 
+/// The options file given on the command line (-options_file FILE), or nullptr.
+const char* command_line_options_file(int argc, char** argv) {
+  for (int i = 1; i + 1 < argc; ++i)
+    if (!std::strcmp(argv[i], "-options_file")) return argv[i + 1];
+  return nullptr;
+}
+
+/// The scene's solver.options_file sets the scene's default solver. It is read unless the
+/// command line names its own options file (which replaces it, so that two configurations are
+/// never mixed) or says -mlshell_scene_solver false; the command line is inserted again after
+/// it so that its options win. Afterwards scene.solver.options_file names the file whose
+/// options are in effect (for summary.json).
+void apply_scene_solver_file(mlshell::Scene& scene, int argc, char** argv) {
+  PetscBool use_scene = PETSC_TRUE;
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetBool(nullptr, nullptr, "-mlshell_scene_solver",
+                                                       &use_scene, nullptr));
+  if (const char* file = command_line_options_file(argc, argv)) {
+    scene.solver.options_file = std::filesystem::path(file);
+    return;
+  }
+  if (!use_scene) scene.solver.options_file.reset();
+  if (!scene.solver.options_file) return;
+  PetscCallAbort(PETSC_COMM_WORLD,
+                 PetscOptionsInsertFile(PETSC_COMM_WORLD, nullptr,
+                                        scene.solver.options_file->c_str(), PETSC_TRUE));
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsInsert(nullptr, &argc, &argv, nullptr));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -142,13 +174,7 @@ int main(int argc, char** argv) {
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   try {
     mlshell::Scene scene = mlshell::parse_scene(scene_path);
-    if (scene.solver.options_file) {
-      // The scene's options file first, then the command line again so that it wins.
-      PetscCallAbort(PETSC_COMM_WORLD,
-                     PetscOptionsInsertFile(PETSC_COMM_WORLD, nullptr,
-                                            scene.solver.options_file->c_str(), PETSC_TRUE));
-      PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsInsert(nullptr, &argc, &argv, nullptr));
-    }
+    apply_scene_solver_file(scene, argc, argv);
     char dir[PETSC_MAX_PATH_LEN];
     PetscBool has_dir = PETSC_FALSE;
     PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetString(nullptr, nullptr, "-mlshell_output_dir",

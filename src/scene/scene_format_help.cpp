@@ -93,7 +93,7 @@ output:                      optional
                              4 up to refine 2, 2 at refine 3, 1 beyond)
   checkpoint_every: int      steps between checkpoints, >= 0 (default 0: none)
 solver:                      optional
-  options_file: path         PETSc options file; the command line overrides it
+  options_file: path         default PETSc options; -options_file replaces them (--help above)
 
 WHERE: selections for effects and probes
   CURVE  boundary                 the whole boundary

@@ -173,6 +173,8 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
     }
     Json::Object solver{
         {"type", Json(solver_ ? solver_->type() : std::string("none"))},
+        {"options_file", scene_.solver.options_file ? Json(scene_.solver.options_file->string())
+                                                    : Json(nullptr)},
         {"iterations", Json(static_cast<long long>(total_iterations_))},
         {"linear_iterations", Json(static_cast<long long>(total_linear_iterations_))},
         {"solves", Json(static_cast<long long>(total_solves_))},

@@ -8,7 +8,8 @@ set -euo pipefail
 
 source "$(dirname "$0")/lib/common.bash" "$@"
 
-sed -e 's|out/trampoline|out|' "$SRC/examples/trampoline.yaml" >scene.yaml
+sed -e 's|out/trampoline|out|' -e "s|options_file: \.\./|options_file: $SRC/|" \
+  "$SRC/examples/trampoline.yaml" >scene.yaml
 echo "check: the hierarchy view lists levels 0..2 with 147, 363 and 1083 dofs, and S, R, Q"
 timeout 120 mpiexec --oversubscribe -n 2 "$MLSHELL" scene.yaml -mlshell_evaluate \
   -mlshell_hierarchy_view -mlshell_hierarchy_write levels >view.log 2>&1 || die "exit $?: $(cat view.log)"

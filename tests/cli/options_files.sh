@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # PETSc options files: a scene may name one (solver.options_file, relative to the scene), PETSc's
-# own -options_file works with plain and YAML files, and the command line wins over both.
+# own -options_file works with plain and YAML files and replaces the scene's file (the two are
+# never mixed), -mlshell_scene_solver false ignores the scene's file, and the command line wins
+# over both. summary.json names the file in effect.
 #
 # usage: bash options_files.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -11,23 +13,32 @@ mkdir -p scene
 cat >scene/opts.yaml <<'YAML'
 tao:
   type: bnls
+  gatol: 1e-3
 YAML
 printf -- '-tao_type bntl\n' >plain.rc
 sed -e 's|out/plate|out|' -e 's|refine: 3|refine: 1|' "$SRC/examples/plate.yaml" >scene/plate.yaml
 printf 'solver: {options_file: opts.yaml}\n' >>scene/plate.yaml
 
-solver_type() {  # solver_type ARGS...: runs the plate and prints summary.json's solver.type
+# solver_type ARGS...: runs the plate and prints summary.json's solver type, gradient tolerance
+# and options file
+solver_type() {
   rm -rf out
   "$MLSHELL" scene/plate.yaml -mlshell_quiet "$@" >run.log 2>&1 || die "exit $?: $(cat run.log)"
-  $PY -c "import json; print(json.load(open('out/summary.json'))['solver']['type'])"
+  $PY -c "import json, os; s = json.load(open('out/summary.json'))['solver']
+f = s['options_file']
+print(s['type'], s['gradient_tolerance'], os.path.basename(f) if f else None)"
 }
 
-echo "check: the scene's options file selects the solver"
-[[ $(solver_type) == bnls ]] || die "scene options file not applied: $(solver_type)"
+echo "check: the scene's options file selects the solver and its tolerance"
+[[ $(solver_type) == "bnls 0.001 opts.yaml" ]] || die "scene options file not applied: $(solver_type)"
 echo "check: the command line wins over the scene's options file"
-[[ $(solver_type -tao_type bntr) == bntr ]] || die "command line did not win"
-echo "check: PETSc's -options_file (plain) works and wins over the scene's file"
-[[ $(solver_type -options_file "$WORK/plain.rc") == bntl ]] || die "-options_file not applied"
+[[ $(solver_type -tao_type bntr) == "bntr 0.001 opts.yaml" ]] || die "command line did not win"
+echo "check: PETSc's -options_file (plain) replaces the scene's file: bntl, the default tolerance"
+[[ $(solver_type -options_file "$WORK/plain.rc") == "bntl 1e-07 plain.rc" ]] ||
+  die "-options_file did not replace the scene's: $(solver_type -options_file "$WORK/plain.rc")"
+echo "check: -mlshell_scene_solver false ignores the scene's file: mlshell's built-in default"
+[[ $(solver_type -mlshell_scene_solver false) == "rmtr 1e-07 None" ]] ||
+  die "scene's file not ignored: $(solver_type -mlshell_scene_solver false)"
 echo "check: the shipped options files in petsc-options/ select their solver and converge"
 echo "       (the linearized equation takes one step and may stop short: exit 3 is its answer)"
 for f in "$SRC"/petsc-options/*.yaml; do

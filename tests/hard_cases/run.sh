@@ -143,7 +143,9 @@ EOF
 scene_copy() {
   local name=$1 example=$2 refine=$3
   shift 3
-  sed -e "s/^\(  refine:\) *[0-9]*/\1 $refine/" "$SRC/examples/$example.yaml" >"$name.yaml"
+  # The copy lies elsewhere: the scene's solver file by its path in the source tree.
+  sed -e "s/^\(  refine:\) *[0-9]*/\1 $refine/" \
+    -e "s|options_file: \.\./|options_file: $SRC/|" "$SRC/examples/$example.yaml" >"$name.yaml"
   grep -qE "^  refine: $refine( |\$)" "$name.yaml" || {
     echo "hard cases: error: examples/$example.yaml has no '  refine:' line to set" >&2; exit 2; }
   for e in "$@"; do

@@ -60,6 +60,14 @@ MUTATIONS = [
      "if (!(delta > 1e15)) return false;",
      "the stagnation test of (7.1) stops V-cycles that still contract ‖g‖ once f stops "
      "changing in its last bits", ()),
+    ("scene-solver-file-mixed", "src/cli/main.cpp",
+     "  if (const char* file = command_line_options_file(argc, argv)) {",
+     "  if (const char* file = nullptr) {",
+     "a command-line -options_file is layered over the scene's solver file instead of replacing "
+     "it: two configurations mixed", ()),
+    ("scene-solver-switch-ignored", "src/cli/main.cpp",
+     "  if (!use_scene) scene.solver.options_file.reset();\n", "",
+     "-mlshell_scene_solver false still reads the scene's solver file", ()),
     ("stagnation-window-one", "solvers/local_trust_region.cpp",
      "since_best_ < stagnation_window", "since_best_ < 1",
      "the stagnation test's window shrunk to one iteration: a V-cycle that raises ‖g‖ a little "
