@@ -68,6 +68,10 @@ MUTATIONS = [
     ("scene-solver-switch-ignored", "src/cli/main.cpp",
      "  if (!use_scene) scene.solver.options_file.reset();\n", "",
      "-mlshell_scene_solver false still reads the scene's solver file", ()),
+    ("subspace-reach-kept", "solvers/subspace_acceleration.cpp",
+     "        reach_ = std::max<PetscReal>(kMinReach, p.gamma1 * std::min(reach_, d_norm / s_norm));\n",
+     "        reach_ = std::max<PetscReal>(kMinReach, reach_);\n",
+     "a rejected subspace step leaves its reach as it was: the same rejected step again", ()),
     ("stagnation-window-one", "solvers/local_trust_region.cpp",
      "since_best_ < stagnation_window", "since_best_ < 1",
      "the stagnation test's window shrunk to one iteration: a V-cycle that raises ‖g‖ a little "

@@ -238,5 +238,14 @@ TEST(SubspaceAcceleration, AStepTheEnergyRejectsIsNotTaken) {
   PetscReal x;
   VecNorm(lv.tr->solution(), NORM_INFINITY, &x);
   EXPECT_EQ(x, 0.0);
+  // The rejected step was 1, half the correction (2): the reach shrinks to γ₁ · ½ = ¼ of it.
+  // The same step again is on that boundary, d = 0.5 (relaxation ¼), where f = 1.375:
+  // ρ = (0.5 − 1.375) / 0.375 = −7/3, rejected; with the reach kept it would repeat ρ = −39.
+  SubspaceStep again;
+  ASSERT_EQ(subspace.step(*lv.tr, lv.y, p, delta, &again), 0);
+  EXPECT_TRUE(again.tried);
+  EXPECT_FALSE(again.accepted);
+  EXPECT_NEAR(again.relaxation, 0.25, 1e-14);
+  EXPECT_NEAR(again.rho, -7.0 / 3.0, 1e-9);
   VecDestroy(&zero);
 }
