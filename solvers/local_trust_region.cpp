@@ -286,6 +286,7 @@ PetscErrorCode LocalTrustRegion::iterate(const TrustRegionParameters& p, PetscRe
   PetscCall(ensure_hessian());
   PetscCall(qp_->solve(g_, qp_radius, s_, it->qp));
   ++counters_.qp_solves;
+  counters_.factorisations += it->qp.factorisations;
   PetscReal model_decrease = it->qp.model_decrease;
   it->step_norm = it->qp.step_norm;
   // The share of the radius the step needs: a larger radius would give the same step.

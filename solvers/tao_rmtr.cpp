@@ -50,7 +50,11 @@
 //                                    iterate's, and a level stops at ‖g‖ ≤ gatol (0: iterate to
 //                                    -tao_rmtr_stcg_max_it or the KSP's own tolerances)
 //   -tao_rmtr_smoother_pc none       preconditioner of the STCG smoother: none (the paper), or
-//                                    vpatch (vertex-patch Schwarz, vertex_patch_pc.hpp), or any PC
+//                                    vpatch (vertex-patch Schwarz, vertex_patch_pc.hpp), or any PC;
+//                                    with Dogleg smoothing, the Newton point comes from CG with
+//                                    this PC (at most -tao_rmtr_stcg_max_it iterations, relative
+//                                    tolerance -tao_rmtr_newton_rtol 1e-2, H + λI on negative
+//                                    curvature; DoglegQp) instead of a factorisation
 //   -tao_rmtr_hessian_lag 0          accepted steps a level keeps its Hessian (LocalTrustRegion)
 //   -tao_rmtr_fmg_cycles 1000        full-multigrid start: before the first V-cycle, solve each
 //                                    coarser level's own problem f^l, coarsest first, from the
@@ -127,7 +131,8 @@ struct RmtrContext {
   char smoother_pc[64] = "none";
   PetscInt hessian_lag = 0, fmg_cycles = 1000, subspace = 0, retries = 0;
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
-  PetscReal stcg_target = 0.1;  // STCG stops at ‖g + Hs‖ ≤ stcg_target · gatol
+  PetscReal stcg_target = 0.1;   // STCG stops at ‖g + Hs‖ ≤ stcg_target · gatol
+  PetscReal newton_rtol = 1e-2;  // Dogleg's inexact Newton point (smoother_pc set): CG's rtol
   StoppingRule stopping;
   bool limiting = false;  // the last solve ended at the limiting accuracy
   Objective* error_source = nullptr;
@@ -158,8 +163,11 @@ void destroy_levels(RmtrContext& c) {
 }
 
 std::unique_ptr<TrustRegionQp> make_qp(MPI_Comm comm, PetscInt kind, const std::string& prefix,
-                                       PetscInt stcg_max_it, const char* pc_type) {
-  if (kind == 0) return std::make_unique<DoglegQp>(comm, prefix);
+                                       PetscInt stcg_max_it, const char* pc_type,
+                                       PetscReal newton_rtol) {
+  if (kind == 0)  // with a preconditioner: the inexact Newton point of preconditioned CG
+    return std::make_unique<DoglegQp>(
+        comm, prefix, InexactNewton{pc_type, static_cast<int>(stcg_max_it), newton_rtol});
   return std::make_unique<SteihaugTointQp>(comm, prefix, static_cast<int>(stcg_max_it), pc_type);
 }
 
@@ -213,7 +221,7 @@ PetscErrorCode setup(Tao tao) {
     lv.tr = std::make_unique<LocalTrustRegion>(
         *lv.objective, like, lv.H,
         make_qp(comm, l == 0 ? c->coarse_qp : c->smoother_qp, qp_prefix, c->stcg_max_it,
-                l == 0 ? PCNONE : c->smoother_pc),
+                l == 0 ? PCNONE : c->smoother_pc, c->newton_rtol),
         std::move(norm));
     lv.tr->set_hessian_lag(static_cast<int>(c->hessian_lag));
     if (c->subspace > 0 && l > 0)
@@ -528,6 +536,7 @@ PetscErrorCode collect_statistics(RmtrContext& c) {
     s.dofs = lv.stats.dofs;
     s.assemblies = t.hessians;
     s.qp_solves = t.qp_solves;
+    s.factorisations = t.factorisations;
     s.objectives = t.objectives + lv.objectives;
     s.coarse_accepted = lv.stats.coarse_accepted;
     s.coarse_rejected = lv.stats.coarse_rejected;
@@ -656,6 +665,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                             "", c->coarse_max_it, &c->coarse_max_it, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_stcg_max_it", "STCG iterations per smoothing step", "",
                             c->stcg_max_it, &c->stcg_max_it, nullptr));
+  PetscCall(PetscOptionsReal("-tao_rmtr_newton_rtol",
+                             "Dogleg smoothing with -tao_rmtr_smoother_pc: relative tolerance of "
+                             "the CG solve for its Newton point",
+                             "", c->newton_rtol, &c->newton_rtol, nullptr));
   PetscCall(PetscOptionsReal("-tao_rmtr_stcg_target",
                              "STCG stops at a model gradient of this fraction of -tao_gatol", "",
                              c->stcg_target, &c->stcg_target, nullptr));
@@ -726,6 +739,8 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
              "-tao_rmtr_coarse_max_it and -tao_rmtr_stcg_max_it must be >= 1");
   PetscCheck(c->stcg_target >= 0 && c->stcg_target < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_stcg_target: must lie in [0, 1), got %g", (double)c->stcg_target);
+  PetscCheck(c->newton_rtol > 0 && c->newton_rtol < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_newton_rtol: must lie in (0, 1), got %g", (double)c->newton_rtol);
   PetscCheck(c->fmg_cycles >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_fmg_cycles must be >= 0, got %" PetscInt_FMT, c->fmg_cycles);
   PetscCheck(c->retries >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -776,13 +791,14 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
   if (c->stats.cycles > 0) {
     PetscCall(PetscViewerASCIIPrintf(
         viewer,
-        "  level       dofs  successful  assemblies   QP solves  objectives  coarse +/-\n"));
+        "  level       dofs  successful  assemblies   QP solves  factorised  objectives  "
+        "coarse +/-\n"));
     for (int l = static_cast<int>(c->stats.levels.size()) - 1; l >= 0; --l) {
       const RmtrLevelStatistics& s = c->stats.levels[l];
       PetscCall(PetscViewerASCIIPrintf(
-          viewer, "  %5d %10" PetscInt_FMT " %11ld %11ld %11ld %11ld  %ld/%ld\n", l, s.dofs,
-          s.successful, s.assemblies, s.qp_solves, s.objectives, s.coarse_accepted,
-          s.coarse_rejected));
+          viewer, "  %5d %10" PetscInt_FMT " %11ld %11ld %11ld %11ld %11ld  %ld/%ld\n", l, s.dofs,
+          s.successful, s.assemblies, s.qp_solves, s.factorisations, s.objectives,
+          s.coarse_accepted, s.coarse_rejected));
     }
     PetscCall(PetscViewerASCIIPrintf(
         viewer,
@@ -834,6 +850,7 @@ RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
     a.successful += b.successful;
     a.assemblies += b.assemblies;
     a.qp_solves += b.qp_solves;
+    a.factorisations += b.factorisations;
     a.objectives += b.objectives;
     a.coarse_accepted += b.coarse_accepted;
     a.coarse_rejected += b.coarse_rejected;

@@ -49,10 +49,28 @@ bool mumps_workspace_short(Mat F) {
   return false;
 }
 
+/// An inexact Newton solve (CG with `newton.pc_type`) configurable under `prefix`.
+KSP create_iterative_solver(MPI_Comm comm, const std::string& prefix, const InexactNewton& newton) {
+  KSP ksp;
+  PC pc;
+  PetscCallAbort(comm, KSPCreate(comm, &ksp));
+  PetscCallAbort(comm, KSPSetOptionsPrefix(ksp, prefix.c_str()));
+  PetscCallAbort(comm, KSPSetType(ksp, KSPCG));
+  PetscCallAbort(comm, KSPSetTolerances(ksp, newton.rtol, PETSC_DEFAULT, PETSC_DEFAULT,
+                                        newton.max_iterations));
+  PetscCallAbort(comm, KSPGetPC(ksp, &pc));
+  PetscCallAbort(comm, PCSetType(pc, newton.pc_type));
+  PetscCallAbort(comm, KSPSetFromOptions(ksp));
+  return ksp;
+}
+
 }  // namespace
 
-DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix)
-    : ksp_(create_direct_solver(comm, prefix)), ksp_shifted_(create_direct_solver(comm, prefix)) {}
+DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix, InexactNewton newton)
+    : ksp_(newton.iterative() ? create_iterative_solver(comm, prefix, newton)
+                              : create_direct_solver(comm, prefix)),
+      ksp_shifted_(newton.iterative() ? nullptr : create_direct_solver(comm, prefix)),
+      iterative_(newton.iterative()) {}
 
 DoglegQp::~DoglegQp() {
   KSPDestroy(&ksp_);
@@ -70,28 +88,38 @@ PetscErrorCode DoglegQp::set_operator(Mat H) {
   PetscFunctionReturn(0);
 }
 
+// The least λ on a decade grid that makes H + λI positive definite: a larger shift damps the soft
+// modes (bending, inertia), whose eigenvalues lie many decades below ‖H‖∞, and leaves the step no
+// longer than the shift allows, whatever the radius. The grid starts a decade below the previous
+// Hessian's λ (shifts change slowly along a solve), the first time at 10⁻¹⁰‖H‖∞; H + λI is
+// definite by λ = ‖H‖∞ (Gershgorin).
+PetscReal DoglegQp::first_shift(PetscReal norm) const {
+  return std::max(1e-14 * norm, last_shift_ > 0 ? last_shift_ / 10 : 1e-10 * norm);
+}
+
+PetscErrorCode DoglegQp::shift_operator(PetscReal lambda) {
+  PetscFunctionBeginUser;
+  if (!shifted_) {  // the shifted matrices share one nonzero pattern
+    PetscCall(MatDuplicate(H_, MAT_DO_NOT_COPY_VALUES, &shifted_));
+    PetscCall(MatSetOption(shifted_, MAT_SYMMETRIC, PETSC_TRUE));  // for Cholesky
+  }
+  PetscCall(MatCopy(H_, shifted_, SAME_NONZERO_PATTERN));
+  PetscCall(MatShift(shifted_, lambda));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode DoglegQp::factor() {
   PetscFunctionBeginUser;
   factored_ = true;
   active_ = ksp_;
   PetscCall(factor_operator());
-  if (factor_failed_ || indefinite_) {
+  if (!iterative_ && (factor_failed_ || indefinite_)) {
     // The shifted matrices share one nonzero pattern: one symbolic factorisation for all λ.
     PetscReal norm;
     PetscCall(MatNorm(H_, NORM_INFINITY, &norm));
-    if (!shifted_) {
-      PetscCall(MatDuplicate(H_, MAT_DO_NOT_COPY_VALUES, &shifted_));
-      PetscCall(MatSetOption(shifted_, MAT_SYMMETRIC, PETSC_TRUE));  // for Cholesky
-    }
-    // The least λ on a decade grid that makes H + λI positive definite: a larger shift damps
-    // the soft modes (bending, inertia), whose eigenvalues lie many decades below ‖H‖∞, and
-    // leaves the step no longer than the shift allows, whatever the radius. The grid starts a
-    // decade below the previous Hessian's λ (shifts change slowly along a solve), the first
-    // time at 10⁻¹⁰‖H‖∞; H + λI is definite by λ = ‖H‖∞ (Gershgorin).
-    PetscReal lambda = std::max(1e-14 * norm, last_shift_ > 0 ? last_shift_ / 10 : 1e-10 * norm);
-    for (; (factor_failed_ || indefinite_) && lambda <= 10 * norm; lambda *= 10) {
-      PetscCall(MatCopy(H_, shifted_, SAME_NONZERO_PATTERN));
-      PetscCall(MatShift(shifted_, lambda));
+    for (PetscReal lambda = first_shift(norm);
+         (factor_failed_ || indefinite_) && lambda <= 10 * norm; lambda *= 10) {
+      PetscCall(shift_operator(lambda));
       // After a failed factorisation MUMPS must start over (symbolic phase included).
       if (factor_failed_ && active_ == ksp_shifted_) PetscCall(KSPReset(ksp_shifted_));
       active_ = ksp_shifted_;
@@ -106,6 +134,7 @@ PetscErrorCode DoglegQp::factor() {
 
 PetscErrorCode DoglegQp::factor_operator() {
   PetscFunctionBeginUser;
+  if (!iterative_) ++factorisations_;
   PC pc;
   PCType type;
   PetscCall(KSPGetPC(active_, &pc));
@@ -167,11 +196,38 @@ PetscErrorCode DoglegQp::factor_operator() {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode DoglegQp::iterative_newton(Vec g, Vec pN, QpResult& result,
+                                          KSPConvergedReason* reason) {
+  PetscFunctionBeginUser;
+  // The KSP keeps H + λI (and λ) between the solves of one Hessian; H's PC is set up once.
+  PetscCall(KSPSolve(ksp_, g, pN));
+  ++result.iterations;
+  PetscCall(KSPGetConvergedReason(ksp_, reason));
+  if (*reason == KSP_DIVERGED_INDEFINITE_MAT) {
+    PetscReal norm;
+    PetscCall(MatNorm(H_, NORM_INFINITY, &norm));
+    for (PetscReal lambda = std::max(shift_ * 10, first_shift(norm));
+         *reason == KSP_DIVERGED_INDEFINITE_MAT && lambda <= 10 * norm; lambda *= 10) {
+      PetscCall(shift_operator(lambda));
+      PetscCall(KSPSetOperators(ksp_, shifted_, H_));
+      PetscCall(KSPSolve(ksp_, g, pN));
+      ++result.iterations;
+      PetscCall(KSPGetConvergedReason(ksp_, reason));
+      shift_ = lambda;
+    }
+    if (*reason != KSP_DIVERGED_INDEFINITE_MAT) last_shift_ = shift_;
+  }
+  // Out of iterations: an inexact Newton point, still a usable dogleg end.
+  if (*reason == KSP_DIVERGED_ITS) *reason = KSP_CONVERGED_ITS;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result) {
   PetscFunctionBeginUser;
   PetscReal gnorm, gHg;
   PetscCall(VecNorm(g, NORM_2, &gnorm));
   result = QpResult{};
+  factorisations_ = 0;
   if (gnorm == 0.0) {
     PetscCall(VecZeroEntries(s));
     result.kind = "interior";
@@ -199,11 +255,15 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
     if (!factored_) PetscCall(factor());
     bool newton_ok = !factor_failed_ && !indefinite_;  // of H, or of H + λI
     if (newton_ok) {
-      PetscCall(KSPSolve(active_, g, pN));
-      PetscCall(VecScale(pN, -1.0));
-      ++result.iterations;
       KSPConvergedReason reason;
-      PetscCall(KSPGetConvergedReason(active_, &reason));
+      if (iterative_) {
+        PetscCall(iterative_newton(g, pN, result, &reason));
+      } else {
+        PetscCall(KSPSolve(active_, g, pN));
+        ++result.iterations;
+        PetscCall(KSPGetConvergedReason(active_, &reason));
+      }
+      PetscCall(VecScale(pN, -1.0));
       PetscReal gp, pHp, pnorm;
       PetscCall(VecDot(g, pN, &gp));
       PetscCall(quadratic_model(H_, g, pN, &pHp));  // m(p_N) = gᵀp + ½ pᵀHp
@@ -239,7 +299,9 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
         result.kind = shift_ > 0 ? "shifted" : "dogleg";
         result.radius_needed = radius;
       }
-      if (shift_ > 0) {  // the modified Newton point must beat the Cauchy point in the true model
+      // The modified Newton point, or CG's (which may have missed negative curvature), must
+      // beat the Cauchy point in the true model.
+      if (shift_ > 0 || iterative_) {
         PetscReal ms, mc;
         PetscCall(quadratic_model(H_, g, s, &ms));
         PetscCall(quadratic_model(H_, g, pC, &mc));
@@ -252,6 +314,7 @@ PetscErrorCode DoglegQp::solve(Vec g, PetscReal radius, Vec s, QpResult& result)
   }
   PetscReal m;
   PetscCall(quadratic_model(H_, g, s, &m));
+  result.factorisations = factorisations_;
   result.model_decrease = -m;
   PetscCall(VecNorm(s, NORM_2, &result.step_norm));
   PetscCall(VecDestroy(&Hg));

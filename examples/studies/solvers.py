@@ -35,6 +35,10 @@ SOLVERS = {
                             ["-options_file", "@petsc-options/rmtr-patch-galerkin.yaml"]),
     "tr": ("single-level TR, Dogleg (Alg. 4.1)", ["-tao_type", "tr", "-tao_max_it", "100000"]),
     "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),
+    "rmtr-patch-dogleg": ("RMTR, Dogleg smoothing with inexact Newton points (patch-"
+                          "preconditioned CG, 60 its), Galerkin coarse models, subspace steps "
+                          "and retries (no fine factorisation)",
+                          ["-options_file", "@petsc-options/rmtr-patch-dogleg.yaml"]),
     "bnls-mumps": ("TAO bnls, ST-CG + MUMPS LU (line-search Newton)", ["-tao_type", "bnls"]),
     "bntr-gamg": ("TAO bntr, ST-CG + GAMG",
                   ["-tao_type", "bntr"] + _bnk(["-ksp_type", "stcg", "-ksp_max_it", "500",

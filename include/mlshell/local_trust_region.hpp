@@ -116,15 +116,17 @@ PetscErrorCode trust_region_parameter_options(PetscOptionItems* PetscOptionsObje
 
 /// Work done by one Local_TR (or one level of RMTR).
 struct TrustRegionCounters {
-  long accepted = 0;    ///< successful iterations
-  long qp_solves = 0;   ///< subproblem solves
-  long objectives = 0;  ///< trial-point evaluations
-  long hessians = 0;    ///< Hessian assemblies (each where a subproblem needed one)
+  long accepted = 0;        ///< successful iterations
+  long qp_solves = 0;       ///< subproblem solves
+  long objectives = 0;      ///< trial-point evaluations
+  long hessians = 0;        ///< Hessian assemblies (each where a subproblem needed one)
+  long factorisations = 0;  ///< sparse direct factorisations by the subproblem solver
   TrustRegionCounters& operator+=(const TrustRegionCounters& o) {
     accepted += o.accepted;
     qp_solves += o.qp_solves;
     objectives += o.objectives;
     hessians += o.hessians;
+    factorisations += o.factorisations;
     return *this;
   }
 };

@@ -27,6 +27,7 @@ struct RmtrLevelStatistics {
   long successful = 0;  ///< π^l of eq. (7.2): accepted steps that survived to the finest level
   long assemblies = 0;  ///< Hessian assemblies (Q^l of eq. 7.3; only where a QP needed one)
   long qp_solves = 0;
+  long factorisations = 0;   ///< sparse direct factorisations (Dogleg's Newton points)
   long objectives = 0;       ///< trial-point evaluations
   long coarse_accepted = 0;  ///< prolongated coarse corrections accepted on this level
   long coarse_rejected = 0;  ///< ... rejected by the multilevel ratio (4.11)

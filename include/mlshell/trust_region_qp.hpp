@@ -38,9 +38,10 @@ struct QpResult {
   /// plain CG's iterates lengthen monotonically; preconditioned ones need not, and a radius
   /// just above ‖s‖₂ may then stop an earlier iterate at the boundary instead).
   PetscReal radius_needed = 0.0;
-  int iterations = 0;     ///< CG iterations (STCG) or factorisations (Dogleg)
-  const char* kind = "";  ///< "newton", "dogleg", "shifted" (Newton/dogleg with H + λI),
-                          ///< "cauchy", "boundary", "interior"
+  int iterations = 0;      ///< CG iterations (STCG) or Newton solves (Dogleg)
+  int factorisations = 0;  ///< sparse direct factorisations (Dogleg; shifted ones included)
+  const char* kind = "";   ///< "newton", "dogleg", "shifted" (Newton/dogleg with H + λI),
+                           ///< "cauchy", "boundary", "interior"
 };
 
 class TrustRegionQp {
@@ -54,9 +55,22 @@ class TrustRegionQp {
   virtual void set_gradient_target(PetscReal target) { (void)target; }
 };
 
+/// How Dogleg computes its Newton point: by the factorisation (the default), or inexactly by
+/// preconditioned CG (`pc_type` not PCNONE; at most `max_iterations`, relative tolerance
+/// `rtol`). CG that meets negative curvature starts over on H + λI, λ up by decades from a
+/// tenth of the last one that sufficed (first 10⁻¹⁰‖H‖∞), preconditioned by H's own PC (PC
+/// vpatch is positive definite for any symmetric H); a Newton point that has used up its
+/// iterations is taken as it is (the comparison with the Cauchy point guards the step).
+struct InexactNewton {
+  const char* pc_type = PCNONE;
+  int max_iterations = 60;
+  PetscReal rtol = 1e-2;
+  bool iterative() const { return std::string(pc_type) != PCNONE; }
+};
+
 class DoglegQp final : public TrustRegionQp {
  public:
-  DoglegQp(MPI_Comm comm, const std::string& prefix);
+  DoglegQp(MPI_Comm comm, const std::string& prefix, InexactNewton newton = {});
   ~DoglegQp() override;
   PetscErrorCode set_operator(Mat H) override;
   PetscErrorCode solve(Vec g, PetscReal radius, Vec s, QpResult& result) override;
@@ -64,6 +78,14 @@ class DoglegQp final : public TrustRegionQp {
  private:
   PetscErrorCode factor();
   PetscErrorCode factor_operator();
+  /// The first λ of the decade grid for H + λI (see the .cpp).
+  PetscReal first_shift(PetscReal norm) const;
+  /// shifted_ = H + λI.
+  PetscErrorCode shift_operator(PetscReal lambda);
+  int factorisations_ = 0;  // factor_operator calls since the last solve() began
+  /// The inexact Newton point −(H + λI)⁻¹g into pN, λ raised while CG meets negative curvature.
+  PetscErrorCode iterative_newton(Vec g, Vec pN, QpResult& result, KSPConvergedReason* reason);
+  bool iterative_ = false;
   KSP ksp_ = nullptr, ksp_shifted_ = nullptr, active_ = nullptr;  // H, H + λI, the one in use
   Mat H_ = nullptr, shifted_ = nullptr;
   PetscReal shift_ = 0.0;       // λ of the factorised H + λI (0: H itself)

@@ -194,6 +194,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                                            {"successful", Json(l.successful)},
                                            {"assemblies", Json(l.assemblies)},
                                            {"qp_solves", Json(l.qp_solves)},
+                                           {"factorisations", Json(l.factorisations)},
                                            {"objectives", Json(l.objectives)},
                                            {"coarse_accepted", Json(l.coarse_accepted)},
                                            {"coarse_rejected", Json(l.coarse_rejected)}}));

@@ -101,13 +101,16 @@ TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
   // each level's Hessian kept for two accepted steps; each smoother also with Galerkin coarse
   // models, and the patch smoother with Galerkin models, a subspace step after each V-cycle and
   // rejected smoothing steps retried (rmtr-patch-galerkin.yaml); Dogleg smoothing with coarse
-  // solves that start from the coarse levels' own iterates.
+  // solves that start from the coarse levels' own iterates; Dogleg smoothing with inexact
+  // Newton points from patch-preconditioned CG, with Galerkin models, subspace steps and retries
+  // (rmtr-patch-dogleg.yaml).
   for (const char* smoother :
        {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin", "stcg-vpatch-galerkin",
-        "stcg-vpatch-galerkin-subspace", "dogleg-iterate"})
+        "stcg-vpatch-galerkin-subspace", "dogleg-iterate", "dogleg-vpatch-galerkin-subspace"})
     for (const char* file : {"trampoline.yaml", "plate.yaml"}) {
       const std::string name = smoother;
       const bool patches = name.starts_with("stcg");
+      const bool inexact = name.starts_with("dogleg-vpatch");
       const bool lag = name == "stcg-vpatch-lag2";
       const bool subspace = name.ends_with("subspace");
       const bool galerkin = name.ends_with("galerkin") || subspace;
@@ -115,7 +118,8 @@ TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
           {{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
            {"-tao_rmtr_subspace", subspace ? "5" : "0"},
            {"-tao_rmtr_retries", subspace ? "3" : "0"},
-           {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
+           {"-tao_rmtr_smoother_pc", patches || inexact ? "vpatch" : "none"},
+           {"-tao_rmtr_stcg_max_it", inexact ? "60" : "10"},
            {"-tao_rmtr_hessian_lag", lag ? "2" : "0"},
            {"-tao_rmtr_coarse_start", name.ends_with("iterate") ? "iterate" : "projection"},
            {"-tao_rmtr_coarse_model", galerkin ? "galerkin" : "first_order"}});
@@ -138,6 +142,13 @@ TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
         // (of ∇f^{l−1}(x₀) − ∇f^{l−1}(x₀), relative to ‖R∇h^l‖ + ‖R∇h^l − ∇f^{l−1}(x₀)‖).
         EXPECT_LE(rmtr.rmtr.max_correction_ratio, 1.0 + 1e-12) << what;
         EXPECT_LT(rmtr.rmtr.max_consistency_error, 1e-8) << what;
+        // Factorisations: on the coarsest level always; above it only with Dogleg's direct
+        // Newton points (the finest level factorises in every Dogleg smoothing step).
+        const auto& levels_done = rmtr.rmtr.levels;
+        EXPECT_GT(levels_done.front().factorisations, 0) << what;
+        for (size_t l = 1; l < levels_done.size(); ++l)
+          if (patches || inexact) EXPECT_EQ(levels_done[l].factorisations, 0) << what << " " << l;
+        if (!patches && !inexact) EXPECT_GT(levels_done.back().factorisations, 0) << what;
       }
     }
 }
@@ -172,17 +183,20 @@ TEST(Rmtr, EnergyNeverIncreasesOverVCycles) {
   // with vertex patches, and the same after a full-multigrid start (f₀ is the given iterate's
   // energy, the first V-cycle starts from the prolongated coarse solution), also with Galerkin
   // coarse models, and with those, subspace steps after the V-cycles and retried smoothing steps;
-  // Dogleg smoothing after a full-multigrid start, with coarse solves from the coarse iterates.
-  for (const int variant : {0, 1, 2, 3, 4, 5}) {
+  // Dogleg smoothing after a full-multigrid start, with coarse solves from the coarse iterates;
+  // and variant 4 with Dogleg's inexact Newton points from patch-preconditioned CG.
+  for (const int variant : {0, 1, 2, 3, 4, 5, 6}) {
     const bool patches = variant > 0 && variant < 5;
-    ScopedOptions smoothing(
-        {{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
-         {"-tao_rmtr_smoother_pc", patches ? "vpatch" : "none"},
-         {"-tao_rmtr_fmg_cycles", variant >= 2 ? "1" : "0"},
-         {"-tao_rmtr_coarse_start", variant == 5 ? "iterate" : "projection"},
-         {"-tao_rmtr_coarse_model", variant == 3 || variant == 4 ? "galerkin" : "first_order"},
-         {"-tao_rmtr_subspace", variant == 4 ? "5" : "0"},
-         {"-tao_rmtr_retries", variant == 4 ? "3" : "0"}});
+    const bool galerkin = variant == 3 || variant == 4 || variant == 6;
+    const bool subspace = variant == 4 || variant == 6;
+    ScopedOptions smoothing({{"-tao_rmtr_smoother_qp", patches ? "stcg" : "dogleg"},
+                             {"-tao_rmtr_smoother_pc", patches || variant == 6 ? "vpatch" : "none"},
+                             {"-tao_rmtr_stcg_max_it", variant == 6 ? "60" : "10"},
+                             {"-tao_rmtr_fmg_cycles", variant >= 2 ? "1" : "0"},
+                             {"-tao_rmtr_coarse_start", variant == 5 ? "iterate" : "projection"},
+                             {"-tao_rmtr_coarse_model", galerkin ? "galerkin" : "first_order"},
+                             {"-tao_rmtr_subspace", subspace ? "5" : "0"},
+                             {"-tao_rmtr_retries", subspace ? "3" : "0"}});
     RestingTrampoline t;
     StepSolver solver(t.problem.level(2), &t.problem);
     ASSERT_EQ(solver.type(), "rmtr");

@@ -143,6 +143,38 @@ TEST(TrustRegionQp, DoglegShiftsByTheLeastDecadeFromTheLastShift) {
   EXPECT_NEAR(shift_of(-2e-6), 4e-6, 1e-12);  // 4e-7 is indefinite: the least decade
 }
 
+TEST(TrustRegionQp, DoglegWithAnInexactNewtonPointShiftsWhereCgMeetsNegativeCurvature) {
+  // The Newton point from CG, preconditioned by |diag H| (SPD, as PC vpatch is for any H):
+  // H = diag(1, 4, −0.001), g = (1, 1, 0.001) has positive curvature along g, and CG's second
+  // direction has pᵀHp ≈ −0.004. CG starts over on H + λI, λ on the decade grid from
+  // 1e-10‖H‖∞ = 4e-10 up, until it gets through: at λ = 4e-3, where H + λI is positive definite
+  // (λ = 4e-4 leaves −6e-4 on the diagonal, which CG meets as it met −0.001). The step is that
+  // Newton point, the factorisation's too (DoglegUsesAShiftedNewtonPoint...), and it beats the
+  // Cauchy point: m ≈ −0.625 against −0.4.
+  PetscOptionsSetValue(nullptr, "-test_dogleg_cg_pc_jacobi_abs", "1");
+  SmallModel m({1.0, 4.0, -0.001}, {1.0, 1.0, 0.001});
+  DoglegQp qp(PETSC_COMM_SELF, "test_dogleg_cg_", InexactNewton{PCJACOBI, 50, 1e-12});
+  PetscOptionsClearValue(nullptr, "-test_dogleg_cg_pc_jacobi_abs");
+  ASSERT_EQ(qp.set_operator(m.H), 0);
+  QpResult r;
+  ASSERT_EQ(qp.solve(m.g, 1e6, m.s, r), 0);
+  EXPECT_STREQ(r.kind, "shifted");
+  EXPECT_EQ(r.iterations, 9);  // H, then the eight λ = 4e-10, 4e-9, ..., 4e-3
+  const PetscScalar* s;
+  VecGetArrayRead(m.s, &s);
+  EXPECT_NEAR(s[0], -1.0 / 1.004, 1e-10);
+  EXPECT_NEAR(s[1], -1.0 / 4.004, 1e-10);
+  EXPECT_NEAR(s[2], -0.001 / 0.003, 1e-8);
+  VecRestoreArrayRead(m.s, &s);
+  EXPECT_GT(r.model_decrease, 0.6);
+  EXPECT_TRUE(m.sufficient_decrease(r, 1e6));
+  // A Hessian with the same pattern starts a decade below the last λ: 4e-4 fails, 4e-3 holds.
+  ASSERT_EQ(qp.set_operator(m.H), 0);
+  ASSERT_EQ(qp.solve(m.g, 1e6, m.s, r), 0);
+  EXPECT_STREQ(r.kind, "shifted");
+  EXPECT_EQ(r.iterations, 3);
+}
+
 TEST(TrustRegionQp, DoglegGivesMumpsMoreWorkspaceInsteadOfAShift) {
   // A positive definite path with tiny and large diagonal entries in turn and three long-range
   // couplings per row, factorised without scaling (ICNTL(8) = 0): LDLᵀ delays about 1,700
