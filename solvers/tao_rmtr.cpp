@@ -44,7 +44,8 @@
 //        level's last subproblem (second order at x₀ whatever the projection gives; the coarse
 //        levels never evaluate their energies, CoarseLevelModel)
 //   -tao_rmtr_smoother_qp stcg|dogleg   -tao_rmtr_coarse_qp dogleg|stcg
-//   -tao_rmtr_stcg_max_it 10         STCG iterations per smoothing step
+//   -tao_rmtr_stcg_max_it 10         CG iterations per smoothing step (STCG; Dogleg's inexact
+//                                    Newton point with -tao_rmtr_smoother_pc)
 //   -tao_rmtr_stcg_target 0.1        STCG stops once its model gradient ‖g + Hs‖ is this fraction
 //                                    of -tao_gatol: the model's gradient approximates the next
 //                                    iterate's, and a level stops at ‖g‖ ≤ gatol (0: iterate to
@@ -663,8 +664,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsInt("-tao_rmtr_mu2", "post-smoothing steps", "", c->mu2, &c->mu2, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_coarse_max_it", "steps on the coarsest level (-1: mu1+mu2)",
                             "", c->coarse_max_it, &c->coarse_max_it, nullptr));
-  PetscCall(PetscOptionsInt("-tao_rmtr_stcg_max_it", "STCG iterations per smoothing step", "",
-                            c->stcg_max_it, &c->stcg_max_it, nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_stcg_max_it",
+                            "CG iterations per smoothing step (STCG, or Dogleg's inexact Newton "
+                            "point with -tao_rmtr_smoother_pc)",
+                            "", c->stcg_max_it, &c->stcg_max_it, nullptr));
   PetscCall(PetscOptionsReal("-tao_rmtr_newton_rtol",
                              "Dogleg smoothing with -tao_rmtr_smoother_pc: relative tolerance of "
                              "the CG solve for its Newton point",

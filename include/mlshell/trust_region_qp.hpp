@@ -14,7 +14,8 @@
 //    fallback then degenerates into steepest descent. The step is never worse than the Cauchy
 //    point in the true model: if the path gives less decrease, or p_N is not a descent
 //    direction, the Cauchy point is taken (steepest descent to the boundary when gᵀHg ≤ 0), so
-//    a step is never NaN.
+//    a step is never NaN. With InexactNewton the Newton point comes from preconditioned CG
+//    instead, shifted on the same grid wherever CG meets negative curvature (no factorisation).
 //  * Steihaug–Toint CG: PETSc's KSPSTCG with the radius, a maximum iteration count (10 as a
 //    smoother) and the model value from KSPCGGetObjFcn; it stops at the boundary on negative
 //    curvature. With a preconditioner M (symmetric positive definite, e.g. PC "vpatch") the
