@@ -689,8 +689,9 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                              reinterpret_cast<PetscEnum*>(&c->coarse_model), nullptr));
   PetscCall(
       PetscOptionsString("-tao_rmtr_smoother_pc",
-                         "preconditioner of STCG above the coarsest level (none, vpatch, ...)", "",
-                         c->smoother_pc, c->smoother_pc, sizeof c->smoother_pc, nullptr));
+                         "preconditioner of STCG above the coarsest level (none, vpatch, ...); "
+                         "with Dogleg, of the CG solve for its Newton point",
+                         "", c->smoother_pc, c->smoother_pc, sizeof c->smoother_pc, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_hessian_lag",
                             "accepted steps a level keeps its Hessian before assembling it again",
                             "", c->hessian_lag, &c->hessian_lag, nullptr));
