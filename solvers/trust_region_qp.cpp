@@ -67,10 +67,10 @@ KSP create_iterative_solver(MPI_Comm comm, const std::string& prefix, const Inex
 }  // namespace
 
 DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix, InexactNewton newton)
-    : ksp_(newton.iterative() ? create_iterative_solver(comm, prefix, newton)
+    : iterative_(newton.iterative()),
+      ksp_(newton.iterative() ? create_iterative_solver(comm, prefix, newton)
                               : create_direct_solver(comm, prefix)),
-      ksp_shifted_(newton.iterative() ? nullptr : create_direct_solver(comm, prefix)),
-      iterative_(newton.iterative()) {}
+      ksp_shifted_(newton.iterative() ? nullptr : create_direct_solver(comm, prefix)) {}
 
 DoglegQp::~DoglegQp() {
   KSPDestroy(&ksp_);
@@ -132,16 +132,41 @@ PetscErrorCode DoglegQp::factor() {
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+/// The KSP whose PC factorises H in `ksp`: `ksp` itself, or under -<prefix>pc_type redundant the
+/// inner one, which factorises every rank's whole copy of H alone (set up here, so that its
+/// failure and inertia can be read). A sequential factorisation is the same in every run, where
+/// MUMPS distributed over ranks schedules its work dynamically and its last bits, and with them
+/// a hanging cloth's path through its V-cycles, vary from run to run.
+PetscErrorCode factorising_solver(KSP ksp, KSP* factorising) {
+  PC pc;
+  PetscBool redundant;
+  PetscFunctionBeginUser;
+  *factorising = ksp;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCREDUNDANT, &redundant));
+  if (redundant) {
+    PetscCall(KSPSetUp(ksp));  // gathers H into the inner solver
+    PetscCall(PCRedundantGetKSP(pc, factorising));
+  }
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
 PetscErrorCode DoglegQp::factor_operator() {
   PetscFunctionBeginUser;
   if (!iterative_) ++factorisations_;
+  KSP solver;
+  PetscCall(factorising_solver(active_, &solver));
   PC pc;
   PCType type;
-  PetscCall(KSPGetPC(active_, &pc));
+  PetscCall(KSPGetPC(solver, &pc));
   PetscCall(PCGetType(pc, &type));
   const bool cholesky = type && std::string(type) == PCCHOLESKY;
   const char* prefix;
-  PetscCall(KSPGetOptionsPrefix(active_, &prefix));
+  PetscCall(KSPGetOptionsPrefix(solver, &prefix));
   bool mumps = false;
   for (int attempt = 0;; ++attempt) {
     Mat F = nullptr;
@@ -159,7 +184,7 @@ PetscErrorCode DoglegQp::factor_operator() {
       // MUMPS reports the inertia of its LDLᵀ factor correctly in parallel only with ICNTL(13) = 1.
       PetscCall(MatMumpsSetIcntl(F, 13, 1));
     }
-    PetscCall(KSPSetUp(active_));
+    PetscCall(KSPSetUp(solver));
     PCFailedReason failed;
     PetscCall(PCGetFailedReason(pc, &failed));
     factor_failed_ = failed != PC_NOERROR;
@@ -178,10 +203,10 @@ PetscErrorCode DoglegQp::factor_operator() {
     const std::string option = std::string("-") + (prefix ? prefix : "") + "mat_mumps_icntl_14";
     PetscCall(PetscOptionsSetValue(nullptr, option.c_str(), std::to_string(larger).c_str()));
     Mat op;
-    PetscCall(KSPGetOperators(active_, &op, nullptr));
+    PetscCall(KSPGetOperators(solver, &op, nullptr));
     PetscCall(PetscObjectReference(reinterpret_cast<PetscObject>(op)));
-    PetscCall(KSPReset(active_));
-    PetscCall(KSPSetOperators(active_, op, op));
+    PetscCall(KSPReset(solver));
+    PetscCall(KSPSetOperators(solver, op, op));
     PetscCall(MatDestroy(&op));
   }
   if (cholesky && !factor_failed_ && mumps) {

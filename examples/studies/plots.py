@@ -135,19 +135,43 @@ def peers(rows, out):
 
 
 def parallel(rows, out):
+    """One panel per scene and resolution: for each solver the 1- and 2-rank runs side by side,
+    stacked by -log_view stage, with the speedup of the whole run above the 2-rank bar."""
     ok = [r for r in rows if number(r["stage_solve"]) is not None]
     if not ok:
         return None
-    fig, ax = plt.subplots(figsize=(max(7, 1.4 * len(ok)), 4))
-    labels = [f"{r['scene']} {r['dofs']}\n{r.get('solver', 'rmtr')}, {r['ranks']} rank(s)"
-              for r in ok]
-    bottom = [0.0] * len(ok)
-    for stage in ("setup", "solve", "output"):
-        values = [number(r[f"stage_{stage}"], 0.0) for r in ok]
-        ax.bar(labels, values, bottom=bottom, label=stage)
-        bottom = [b + v for b, v in zip(bottom, values)]
-    ax.set(ylabel="time [s] (-log_view stages)", title="1 vs 2 ranks")
-    ax.legend()
+    cases = list(dict.fromkeys((r["scene"], r["dofs"]) for r in ok))
+    fig, axes = plt.subplots(1, len(cases), figsize=(max(7, 3.2 * len(cases)), 4.2),
+                             squeeze=False)
+    colours = {"setup": "tab:blue", "solve": "tab:orange", "output": "tab:green"}
+    for ax, (scene, dofs) in zip(axes[0], cases):
+        group = [r for r in ok if (r["scene"], r["dofs"]) == (scene, dofs)]
+        solvers = list(dict.fromkeys(r.get("solver", "rmtr") for r in group))
+        for k, solver in enumerate(solvers):
+            walls = {}
+            for r in group:
+                if r.get("solver", "rmtr") != solver:
+                    continue
+                ranks = int(number(r["ranks"], 1))
+                x = k + (0.2 if ranks > 1 else -0.2)
+                bottom = 0.0
+                for stage, colour in colours.items():
+                    v = number(r[f"stage_{stage}"], 0.0)
+                    ax.bar(x, v, 0.38, bottom=bottom, color=colour,
+                           label=stage if k == 0 and ranks == 1 else None)
+                    bottom += v
+                walls[ranks] = (x, bottom, number(r["wall_time"]))
+            if 1 in walls and 2 in walls and walls[1][2] and walls[2][2]:
+                x, top, wall = walls[2]
+                ax.annotate(f"{walls[1][2] / wall:.2f}×", (x, top), ha="center", va="bottom",
+                            fontsize=8)
+        ax.set_xticks(range(len(solvers)))
+        ax.set_xticklabels([f"{s}\n1 | 2 ranks" for s in solvers], fontsize=7)
+        ax.set_title(f"{scene}, {int(number(dofs)):,} dofs", fontsize=9)
+        ax.margins(y=0.12)
+    axes[0][0].set_ylabel("time [s] (-log_view stages)")
+    axes[0][0].legend(fontsize=7)
+    fig.suptitle("1 vs 2 ranks: whole-run speedup above each 2-rank bar")
     return _save(fig, out, "parallel.png")
 
 

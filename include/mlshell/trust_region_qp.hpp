@@ -5,7 +5,10 @@
 //  * Dogleg (Powell; Nocedal & Wright, Numerical Optimization, §4.1): the path from the Cauchy
 //    point p_C = −(gᵀg / gᵀHg) g to the Newton point p_N = −H⁻¹g, cut at the boundary. The
 //    Newton point comes from a sparse direct factorisation through PETSc (options prefix
-//    `<prefix>`, default Cholesky (LDLᵀ) by MUMPS). If H is indefinite or singular (negative
+//    `<prefix>`, default Cholesky (LDLᵀ) by MUMPS; `<prefix>pc_type redundant` with
+//    `<prefix>redundant_pc_type cholesky` and `<prefix>redundant_pc_factor_mat_solver_type
+//    mumps` factorises each rank's whole copy of H alone, the same in every run, where MUMPS
+//    over several ranks varies in the last bits from run to run). If H is indefinite or singular (negative
 //    eigenvalues in the inertia of the LDLᵀ factor, or a failed factorisation), p_N is taken
 //    from H + λI instead, with the least λ on a decade grid that makes the factor positive
 //    definite (the modified Newton point of Nocedal & Wright §3.4): the grid starts a decade

@@ -24,7 +24,7 @@ EXPECTED_ROWS = {
     "timestep": 10,         # 5 solvers x 2 time steps
     "accuracy": 8,          # 2 solvers x 2 resolutions x 2 tolerances
     "peers": 9,             # RMTR + 8 PETSc configurations
-    "parallel": 4,          # rmtr and rmtr-patch on 1 and 2 ranks
+    "parallel": 6,          # rmtr, rmtr-patch and rmtr-patch-dogleg on 1 and 2 ranks
     "scaling": 17,          # refine 1: 9 solvers; refine 2: 8 (not the paper's ST-CG)
 }
 # Rows quick mode expects to time out or not to run, as (study, scene, reason prefix); none today.

@@ -117,6 +117,30 @@ TEST(TrustRegionQp, DoglegUsesAShiftedNewtonPointWhenItBeatsTheCauchyPoint) {
   EXPECT_TRUE(m.sufficient_decrease(r, 0.8));
 }
 
+TEST(TrustRegionQp, DoglegReadsTheInertiaOfARedundantFactorisation) {
+  // Under pc_type redundant the factorisation is the inner solver's (each rank's whole copy of
+  // H, reproducible from run to run): its inertia must still reveal the negative eigenvalue,
+  // so that the step is the shifted Newton point of the test above (λ = 4e-3), not H⁻¹g.
+  const char* options[][2] = {{"-test_dogleg_redundant_pc_type", "redundant"},
+                              {"-test_dogleg_redundant_redundant_pc_type", "cholesky"},
+                              {"-test_dogleg_redundant_redundant_pc_factor_mat_solver_type",
+                               "mumps"}};
+  for (const auto& o : options) ASSERT_EQ(PetscOptionsSetValue(nullptr, o[0], o[1]), 0);
+  SmallModel m({1.0, 4.0, -0.001}, {1.0, 1.0, 0.001});
+  DoglegQp qp(PETSC_COMM_SELF, "test_dogleg_redundant_");
+  ASSERT_EQ(qp.set_operator(m.H), 0);
+  QpResult r;
+  ASSERT_EQ(qp.solve(m.g, 100.0, m.s, r), 0);
+  for (const auto& o : options) PetscOptionsClearValue(nullptr, o[0]);
+  EXPECT_STREQ(r.kind, "shifted");
+  const PetscScalar* s;
+  VecGetArrayRead(m.s, &s);
+  EXPECT_NEAR(-1e-3 / s[2] + 1e-3, 4e-3, 1e-12);  // λ read back from the step's last entry
+  EXPECT_NEAR(s[0], -1.0 / (1.0 + 4e-3), 1e-12);
+  VecRestoreArrayRead(m.s, &s);
+  EXPECT_TRUE(m.sufficient_decrease(r, 100.0));
+}
+
 TEST(TrustRegionQp, DoglegShiftsByTheLeastDecadeFromTheLastShift) {
   // ‖H‖∞ = 4. First indefinite Hessian: the grid starts at 1e-10‖H‖∞ = 4e-10 and climbs tenfold
   // to the first definite H + λI. Later ones start a decade below the last λ.
