@@ -8,9 +8,9 @@
 //    `<prefix>`, default Cholesky (LDLᵀ) by MUMPS; `<prefix>pc_type redundant` with
 //    `<prefix>redundant_pc_type cholesky` and `<prefix>redundant_pc_factor_mat_solver_type
 //    mumps` factorises each rank's whole copy of H alone, the same in every run, where MUMPS
-//    over several ranks varies in the last bits from run to run). If H is indefinite or singular (negative
-//    eigenvalues in the inertia of the LDLᵀ factor, or a failed factorisation), p_N is taken
-//    from H + λI instead, with the least λ on a decade grid that makes the factor positive
+//    over several ranks varies in the last bits from run to run). If H is indefinite or singular
+//    (negative eigenvalues in the inertia of the LDLᵀ factor, or a failed factorisation), p_N is
+//    taken from H + λI instead, with the least λ on a decade grid that makes the factor positive
 //    definite (the modified Newton point of Nocedal & Wright §3.4): the grid starts a decade
 //    below the last such λ of this solver, the first time at 10⁻¹⁰‖H‖∞, and rises tenfold.
 //    Cloth Hessians are indefinite wherever the fabric is compressed, and the plain Cauchy

@@ -121,10 +121,10 @@ TEST(TrustRegionQp, DoglegReadsTheInertiaOfARedundantFactorisation) {
   // Under pc_type redundant the factorisation is the inner solver's (each rank's whole copy of
   // H, reproducible from run to run): its inertia must still reveal the negative eigenvalue,
   // so that the step is the shifted Newton point of the test above (λ = 4e-3), not H⁻¹g.
-  const char* options[][2] = {{"-test_dogleg_redundant_pc_type", "redundant"},
-                              {"-test_dogleg_redundant_redundant_pc_type", "cholesky"},
-                              {"-test_dogleg_redundant_redundant_pc_factor_mat_solver_type",
-                               "mumps"}};
+  const char* options[][2] = {
+      {"-test_dogleg_redundant_pc_type", "redundant"},
+      {"-test_dogleg_redundant_redundant_pc_type", "cholesky"},
+      {"-test_dogleg_redundant_redundant_pc_factor_mat_solver_type", "mumps"}};
   for (const auto& o : options) ASSERT_EQ(PetscOptionsSetValue(nullptr, o[0], o[1]), 0);
   SmallModel m({1.0, 4.0, -0.001}, {1.0, 1.0, 0.001});
   DoglegQp qp(PETSC_COMM_SELF, "test_dogleg_redundant_");
