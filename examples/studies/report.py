@@ -432,9 +432,9 @@ class Report:
             return
         scenes = sorted({r["scene"] for r in rows}, key=lambda s: (s != "trampoline", s))
         for scene in scenes:
-            self.scaling_table(scene, [r for r in rows if r["scene"] == scene])
-        for scene in scenes:
-            self.scaling_goals(scene, [r for r in rows if r["scene"] == scene])
+            mine = [r for r in rows if r["scene"] == scene]
+            self.scaling_table(scene, mine)
+            self.scaling_goals(scene, mine)
 
     def scaling_table(self, scene, rows):
         order = list(study_scaling.SOLVERS)
