@@ -44,6 +44,12 @@
 //        level's last subproblem (second order at x₀ whatever the projection gives; the coarse
 //        levels never evaluate their energies, CoarseLevelModel)
 //   -tao_rmtr_smoother_qp stcg|dogleg   -tao_rmtr_coarse_qp dogleg|stcg
+//   -tao_rmtr_coarse_redundant 20000 Dogleg on a coarsest level of at most this many dofs
+//                                    factorises it whole on every rank (PC redundant, MUMPS
+//                                    Cholesky inside): the same in every run, where MUMPS over
+//                                    several ranks varies in the last bits and a hanging cloth's
+//                                    path through its V-cycles with it (0: distributed MUMPS;
+//                                    -rmtr_coarse_pc_type overrides either)
 //   -tao_rmtr_stcg_max_it 10         CG iterations per smoothing step (STCG; Dogleg's inexact
 //                                    Newton point with -tao_rmtr_smoother_pc)
 //   -tao_rmtr_stcg_target 0.1        STCG stops once its model gradient ‖g + Hs‖ is this fraction
@@ -131,6 +137,7 @@ struct RmtrContext {
   PetscInt coarse_start = kProjected;
   char smoother_pc[64] = "none";
   PetscInt hessian_lag = 0, fmg_cycles = 1000, subspace = 0, retries = 0;
+  PetscInt coarse_redundant = 20000;  // dofs up to which the coarsest Dogleg gathers its level
   PetscReal delta0 = 1.0, eps_delta = 1e-3;
   PetscReal stcg_target = 0.1;   // STCG stops at ‖g + Hs‖ ≤ stcg_target · gatol
   PetscReal newton_rtol = 1e-2;  // Dogleg's inexact Newton point (smoother_pc set): CG's rtol
@@ -165,10 +172,11 @@ void destroy_levels(RmtrContext& c) {
 
 std::unique_ptr<TrustRegionQp> make_qp(MPI_Comm comm, PetscInt kind, const std::string& prefix,
                                        PetscInt stcg_max_it, const char* pc_type,
-                                       PetscReal newton_rtol) {
+                                       PetscReal newton_rtol, bool redundant) {
   if (kind == 0)  // with a preconditioner: the inexact Newton point of preconditioned CG
     return std::make_unique<DoglegQp>(
-        comm, prefix, InexactNewton{pc_type, static_cast<int>(stcg_max_it), newton_rtol});
+        comm, prefix, InexactNewton{pc_type, static_cast<int>(stcg_max_it), newton_rtol},
+        redundant);
   return std::make_unique<SteihaugTointQp>(comm, prefix, static_cast<int>(stcg_max_it), pc_type);
 }
 
@@ -214,6 +222,7 @@ PetscErrorCode setup(Tao tao) {
     }
     const std::string qp_prefix =
         l == 0 ? p + "rmtr_coarse_" : p + "rmtr_levels_" + std::to_string(l) + "_";
+    PetscCall(VecGetSize(like, &lv.stats.dofs));
     LevelNorm norm;
     if (l < L) {
       MultilevelObjective* hierarchy = c->hierarchy;
@@ -222,12 +231,12 @@ PetscErrorCode setup(Tao tao) {
     lv.tr = std::make_unique<LocalTrustRegion>(
         *lv.objective, like, lv.H,
         make_qp(comm, l == 0 ? c->coarse_qp : c->smoother_qp, qp_prefix, c->stcg_max_it,
-                l == 0 ? PCNONE : c->smoother_pc, c->newton_rtol),
+                l == 0 ? PCNONE : c->smoother_pc, c->newton_rtol,
+                l == 0 && lv.stats.dofs <= c->coarse_redundant),
         std::move(norm));
     lv.tr->set_hessian_lag(static_cast<int>(c->hessian_lag));
     if (c->subspace > 0 && l > 0)
       lv.subspace = std::make_unique<SubspaceAcceleration>(static_cast<int>(c->subspace));
-    PetscCall(VecGetSize(like, &lv.stats.dofs));
   }
   PetscFunctionReturn(0);
 }
@@ -701,6 +710,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsEnum("-tao_rmtr_coarse_qp", "QP solver on the coarsest level", "", kQpNames,
                              static_cast<PetscEnum>(c->coarse_qp),
                              reinterpret_cast<PetscEnum*>(&c->coarse_qp), nullptr));
+  PetscCall(PetscOptionsInt("-tao_rmtr_coarse_redundant",
+                            "Dogleg factorises a coarsest level of at most this many dofs whole on "
+                            "every rank, the same in every run (0: distributed MUMPS)",
+                            "", c->coarse_redundant, &c->coarse_redundant, nullptr));
   PetscCall(
       PetscOptionsReal("-tao_rmtr_delta0", "initial radius", "", c->delta0, &c->delta0, nullptr));
   PetscCall(trust_region_parameter_options(PetscOptionsObject, "-tao_rmtr_", &c->params));
@@ -747,6 +760,8 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
              "-tao_rmtr_newton_rtol: must lie in (0, 1), got %g", (double)c->newton_rtol);
   PetscCheck(c->fmg_cycles >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_fmg_cycles must be >= 0, got %" PetscInt_FMT, c->fmg_cycles);
+  PetscCheck(c->coarse_redundant >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_rmtr_coarse_redundant must be >= 0, got %" PetscInt_FMT, c->coarse_redundant);
   PetscCheck(c->retries >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-tao_rmtr_retries must be >= 0, got %" PetscInt_FMT, c->retries);
   PetscCheck(c->subspace >= 0 && c->subspace <= 20, comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -781,6 +796,10 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
       viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",
       (double)c->delta0, (double)c->params.eta1, (double)c->params.eta2, (double)c->params.gamma1,
       (double)c->params.gamma2, (double)c->eps_delta));
+  if (c->coarse_qp == 0)
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "  coarsest Dogleg factorised whole on every rank up to %" PetscInt_FMT " dofs\n",
+        c->coarse_redundant));
   if (c->fmg_cycles > 0)
     PetscCall(PetscViewerASCIIPrintf(
         viewer,

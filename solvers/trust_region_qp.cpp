@@ -25,14 +25,26 @@ PetscErrorCode quadratic_model(Mat H, Vec g, Vec s, PetscReal* m) {
 
 namespace {
 
-/// A direct solve (KSPPREONLY + Cholesky, MUMPS) configurable under `prefix`.
-KSP create_direct_solver(MPI_Comm comm, const std::string& prefix) {
+/// A direct solve (KSPPREONLY + Cholesky, MUMPS) configurable under `prefix`; with `redundant`,
+/// on more than one rank and without -<prefix>pc_type, each rank factorises its whole copy of the
+/// operator (PC redundant, Cholesky by MUMPS inside, -<prefix>redundant_...).
+KSP create_direct_solver(MPI_Comm comm, const std::string& prefix, bool redundant) {
   KSP ksp;
   PC pc;
+  PetscMPIInt ranks;
+  PetscBool pc_given;
+  PetscCallAbort(comm, MPI_Comm_size(comm, &ranks));
+  PetscCallAbort(comm, PetscOptionsHasName(nullptr, prefix.c_str(), "-pc_type", &pc_given));
   PetscCallAbort(comm, KSPCreate(comm, &ksp));
   PetscCallAbort(comm, KSPSetOptionsPrefix(ksp, prefix.c_str()));
   PetscCallAbort(comm, KSPSetType(ksp, KSPPREONLY));
   PetscCallAbort(comm, KSPGetPC(ksp, &pc));
+  if (redundant && ranks > 1 && !pc_given) {
+    KSP inner;
+    PetscCallAbort(comm, PCSetType(pc, PCREDUNDANT));
+    PetscCallAbort(comm, PCRedundantGetKSP(pc, &inner));
+    PetscCallAbort(comm, KSPGetPC(inner, &pc));
+  }
   PetscCallAbort(comm, PCSetType(pc, PCCHOLESKY));
   PetscCallAbort(comm, PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscCallAbort(comm, KSPSetFromOptions(ksp));
@@ -66,11 +78,11 @@ KSP create_iterative_solver(MPI_Comm comm, const std::string& prefix, const Inex
 
 }  // namespace
 
-DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix, InexactNewton newton)
+DoglegQp::DoglegQp(MPI_Comm comm, const std::string& prefix, InexactNewton newton, bool redundant)
     : iterative_(newton.iterative()),
       ksp_(newton.iterative() ? create_iterative_solver(comm, prefix, newton)
-                              : create_direct_solver(comm, prefix)),
-      ksp_shifted_(newton.iterative() ? nullptr : create_direct_solver(comm, prefix)) {}
+                              : create_direct_solver(comm, prefix, redundant)),
+      ksp_shifted_(newton.iterative() ? nullptr : create_direct_solver(comm, prefix, redundant)) {}
 
 DoglegQp::~DoglegQp() {
   KSPDestroy(&ksp_);

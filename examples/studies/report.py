@@ -19,8 +19,9 @@ GOAL_DOFS = 51483
 GOAL_SCALING = ((51483, 3.0), (201243, 5.0))
 GOAL_SCALING_CYCLES = 20
 GOAL_SCALING_TABLE4 = 5  # elsewhere: at most 1/5 of the paper's Table 4
-# The configuration without fine factorisations that each scene names as its own solver
-# (examples/*.yaml); the re-entrant corner's cage (91 faces) has no Table 4 cell at its dofs.
+# The configuration without fine factorisations that solves each scene: the trampoline names its
+# own (examples/trampoline.yaml), the others use mlshell's default; the re-entrant corner's cage
+# (91 faces) has no Table 4 cell at its dofs.
 SCENE_SOLVER = {"trampoline": "rmtr-patch"}
 FREE_HANGING_SOLVER = "rmtr-patch-dogleg"
 SINGLE_LEVEL = ("tr", "bnls-mumps")
@@ -117,10 +118,10 @@ class Report:
         table1 = [r for r in rows if r.get("preset") == "denim-table1"]
         rows = [r for r in rows if r.get("preset") in (None, "", "denim")]
         self.add("## Tables 3–5: iterations per step, dt = 1\n\nEach cell: mlshell / paper. "
-                 "TR is the single-level trust region with Dogleg; RMTR uses Dogleg smoothing "
-                 "(mlshell's built-in default). Tolerance (7.1): \\|g\\| < 1e-7. Every study ignores "
-                 "the scenes' own solver files (the trampoline's is `rmtr-patch`, the other "
-                 "scenes' `rmtr-patch-dogleg`).\n")
+                 "TR is the single-level trust region with Dogleg; RMTR uses factorised Dogleg "
+                 "smoothing (`rmtr.yaml`, mlshell's default until 2026-12-05). Tolerance (7.1): \\|g\\| < 1e-7. Every study ignores "
+                 "the scenes' own solver files (the trampoline's is `rmtr-patch`; the other scenes "
+                 "use mlshell's default, `rmtr-patch-dogleg`).\n")
         tr = [r for r in rows if r["solver"] == "tr"]
         dofs = sorted({int(r["refine"]) for r in tr})
         body = []
@@ -410,7 +411,7 @@ class Report:
                                                                               solver=solver)),
                                        ok))
         self.add("## Parallel: 1 vs 2 ranks\n\nOne step of dt = 1; times in seconds by "
-                 "`-log_view` stage. `rmtr`: Dogleg smoothing (the built-in default); `rmtr-patch`: "
+                 "`-log_view` stage. `rmtr`: factorised Dogleg smoothing (`rmtr.yaml`); `rmtr-patch`: "
                  "full-multigrid start and vertex-patch smoothing. *Shared*: the wall time of "
                  "one of two 1-rank copies run at once, which share the memory bandwidth and "
                  "caches as 2 ranks do; *ceiling* = 2 × 1-rank wall / shared wall, the speedup "
@@ -460,8 +461,8 @@ class Report:
                      "Trampoline, one step of dt = 1, \\|g\\| < 1e-7. Each cell: V-cycles (RMTR) "
                      "or iterations · wall time · peak resident memory of the largest rank. "
                      "`rmtr`: Dogleg smoothing (a factorisation per smoothing step) after the "
-                     "full-multigrid start (mlshell's built-in default; the trampoline scene's own "
-                     "solver is `rmtr-patch`); `rmtr-patch`: the start, then "
+                     "full-multigrid start (`rmtr.yaml`, mlshell's default until 2026-12-05; the "
+                     "trampoline scene's own solver is `rmtr-patch`); `rmtr-patch`: the start, then "
                      "vertex-patch ST-CG smoothing (no factorisation above the coarsest level); "
                      "`rmtr-patch-vcycles`: the same V-cycles from the given iterate; "
                      "`rmtr-galerkin`: `rmtr` with Galerkin coarse models (JᵀHJ of the finer "
@@ -469,7 +470,8 @@ class Report:
                      "`rmtr-patch` with each coarser level solved in the start, Galerkin "
                      "coarse models, a subspace step after each V-cycle and retried smoothing "
                      "steps; `rmtr-patch-dogleg`: the same with Dogleg smoothing whose Newton "
-                     "points come from patch-preconditioned CG (no factorisation either); "
+                     "points come from patch-preconditioned CG (no factorisation either; mlshell's "
+                     "default); "
                      "`rmtr-paper`: plain ST-CG (§7.3); `tr`: single-level TR + MUMPS; "
                      "`bnls-mumps`: TAO's line-search Newton + MUMPS. Wall time is the whole run "
                      "(setup, solve, output); the headline adds the ratio of the solve alone. "

@@ -16,7 +16,8 @@ def _bnk(prefix_options):
 
 
 SOLVERS = {
-    "rmtr": ("RMTR, Dogleg smoothing (mlshell's built-in default)", ["-tao_type", "rmtr"]),
+    "rmtr": ("RMTR, factorised Dogleg smoothing on every level (rmtr.yaml; mlshell's default "
+             "until 2026-12-05)", ["-options_file", "@petsc-options/rmtr.yaml"]),
     "rmtr-paper": ("RMTR, 10 ST-CG smoothing steps, Dogleg coarse (paper §7.3)",
                    ["-options_file", "@petsc-options/rmtr-paper.yaml"]),
     "rmtr-patch": ("RMTR, full-multigrid start, vertex-patch-preconditioned ST-CG smoothing "
@@ -28,7 +29,8 @@ SOLVERS = {
                             "-tao_rmtr_fmg_cycles", "0"]),
     "rmtr-galerkin": ("RMTR as rmtr, Galerkin coarse models (the finer quadratic model "
                       "J_P^T H J_P on each coarser level)",
-                      ["-tao_type", "rmtr", "-tao_rmtr_coarse_model", "galerkin"]),
+                      ["-options_file", "@petsc-options/rmtr.yaml",
+                       "-tao_rmtr_coarse_model", "galerkin"]),
     "rmtr-patch-galerkin": ("RMTR, the patch smoother (100 ST-CG its) with Galerkin coarse "
                             "models, each coarser level solved by the full-multigrid start, a "
                             "subspace step after each V-cycle, retried smoothing steps",
@@ -37,7 +39,7 @@ SOLVERS = {
     "bntr-mumps": ("TAO bntr, ST-CG + MUMPS LU", ["-tao_type", "bntr"]),
     "rmtr-patch-dogleg": ("RMTR, Dogleg smoothing with inexact Newton points (patch-"
                           "preconditioned CG, 60 its), Galerkin coarse models, subspace steps "
-                          "and retries (no fine factorisation)",
+                          "and retries (no fine factorisation; mlshell's default)",
                           ["-options_file", "@petsc-options/rmtr-patch-dogleg.yaml"]),
     "bnls-mumps": ("TAO bnls, ST-CG + MUMPS LU (line-search Newton)", ["-tao_type", "bnls"]),
     "bntr-gamg": ("TAO bntr, ST-CG + GAMG",

@@ -8,7 +8,8 @@
 //    `<prefix>`, default Cholesky (LDLᵀ) by MUMPS; `<prefix>pc_type redundant` with
 //    `<prefix>redundant_pc_type cholesky` and `<prefix>redundant_pc_factor_mat_solver_type
 //    mumps` factorises each rank's whole copy of H alone, the same in every run, where MUMPS
-//    over several ranks varies in the last bits from run to run). If H is indefinite or singular
+//    over several ranks varies in the last bits from run to run; `redundant` makes that the
+//    default, which `<prefix>pc_type` overrides). If H is indefinite or singular
 //    (negative eigenvalues in the inertia of the LDLᵀ factor, or a failed factorisation), p_N is
 //    taken from H + λI instead, with the least λ on a decade grid that makes the factor positive
 //    definite (the modified Newton point of Nocedal & Wright §3.4): the grid starts a decade
@@ -74,7 +75,10 @@ struct InexactNewton {
 
 class DoglegQp final : public TrustRegionQp {
  public:
-  DoglegQp(MPI_Comm comm, const std::string& prefix, InexactNewton newton = {});
+  /// `redundant`: the factorisation gathers H whole onto every rank (PC redundant, MUMPS Cholesky
+  /// inside) unless `<prefix>pc_type` is given; for small problems such as RMTR's coarsest level.
+  DoglegQp(MPI_Comm comm, const std::string& prefix, InexactNewton newton = {},
+           bool redundant = false);
   ~DoglegQp() override;
   PetscErrorCode set_operator(Mat H) override;
   PetscErrorCode solve(Vec g, PetscReal radius, Vec s, QpResult& result) override;

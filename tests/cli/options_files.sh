@@ -59,3 +59,33 @@ else:
 PY
 done
 echo "PASS"
+
+# run_summary NAME ARGS...: one step of the drooping cloth at 363 dofs into NAME/, printing its
+# V-cycles, energy and gradient norm
+run_summary() {
+  local name=$1
+  shift
+  "$MLSHELL" "$SRC/examples/drooping.yaml" -mlshell_quiet -mlshell_refine 1 -mlshell_steps 1 \
+    -mlshell_output_dir "$name" "$@" >"$name.log" 2>&1 || die "$name: exit $?: $(tail -5 "$name.log")"
+  $PY -c "import json; d = json.load(open('$name/summary.json'))
+print(d['solver']['iterations'], repr(d['energy']['total']), repr(d['gradient_norm']))"
+}
+echo "check: petsc-options/rmtr-patch-dogleg.yaml spells out mlshell's default (the same run)"
+default=$(run_summary default)
+spelled=$(run_summary spelled -options_file "$SRC/petsc-options/rmtr-patch-dogleg.yaml")
+[[ "$default" == "$spelled" ]] || die "default '$default' but rmtr-patch-dogleg.yaml '$spelled'"
+factorised=$(run_summary factorised -options_file "$SRC/petsc-options/rmtr.yaml")
+[[ "$default" != "$factorised" ]] || die "rmtr.yaml ran the default: '$factorised'"
+
+echo "check: on 2 ranks the default factorises the coarsest level whole on each rank"
+coarse_pc() {  # coarse_pc ARGS...: the PC types of the coarsest level's first solve
+  mpiexec --oversubscribe -n 2 "$MLSHELL" "$SRC/examples/drooping.yaml" -mlshell_quiet \
+    -mlshell_refine 1 -mlshell_steps 1 -mlshell_output_dir coarse -tao_max_it 1 \
+    -tao_rmtr_fmg_cycles 0 -rmtr_coarse_ksp_view "$@" >coarse.log 2>&1 || true
+  grep -m 2 -o "^ *type: [a-z]*" coarse.log | sed -n 2p | tr -d ' '
+}
+[[ $(coarse_pc) == "type:redundant" ]] || die "default coarse PC: $(coarse_pc)"
+[[ $(coarse_pc -tao_rmtr_coarse_redundant 0) == "type:cholesky" ]] ||
+  die "-tao_rmtr_coarse_redundant 0: coarse PC $(coarse_pc -tao_rmtr_coarse_redundant 0)"
+[[ $(coarse_pc -tao_rmtr_coarse_redundant 100) == "type:cholesky" ]] ||
+  die "-tao_rmtr_coarse_redundant 100 (below the 147-dof level): $(coarse_pc -tao_rmtr_coarse_redundant 100)"

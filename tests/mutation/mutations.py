@@ -80,6 +80,15 @@ MUTATIONS = [
      "  if (redundant) {\n", "  if (false) {\n",
      "under pc_type redundant Dogleg misses an indefinite Hessian: the unshifted Newton point",
      ()),
+    ("coarse-never-redundant", "solvers/tao_rmtr.cpp",
+     "                l == 0 && lv.stats.dofs <= c->coarse_redundant),",
+     "                false),",
+     "the default coarsest level is factorised by MUMPS distributed over the ranks, which "
+     "varies from run to run (-tao_rmtr_coarse_redundant ignored)", ()),
+    ("default-retries-dropped", "solvers/step_solver.cpp",
+     '                                                 {"rmtr_retries", "3"},\n', "",
+     "mlshell's default no longer matches petsc-options/rmtr-patch-dogleg.yaml, which claims "
+     "to spell it out", ()),
     ("factorisations-uncounted", "solvers/trust_region_qp.cpp",
      "  if (!iterative_) ++factorisations_;\n", "",
      "RMTR's per-level factorisation count stays 0 (no factorisation seen anywhere)", ()),
