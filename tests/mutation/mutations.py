@@ -80,6 +80,10 @@ MUTATIONS = [
      "  if (redundant) {\n", "  if (false) {\n",
      "under pc_type redundant Dogleg misses an indefinite Hessian: the unshifted Newton point",
      ()),
+    ("fmg-floor-at-finest-factor", "solvers/tao_rmtr.cpp",
+     "  rule.limiting_factor = PETSC_INFINITY;  // the floor ends a start's level wherever it lies\n",
+     "", "a full-multigrid level whose round-off floor lies above 100x the finest tolerance runs "
+     "all its V-cycles at that floor", ()),
     ("coarse-never-redundant", "solvers/tao_rmtr.cpp",
      "                l == 0 && lv.stats.dofs <= c->coarse_redundant),",
      "                false),",
