@@ -505,7 +505,7 @@ class Report:
 
     def scaling_goals(self, scene, rows):
         """The issue's goals for the scene's own solver without fine factorisations: V-cycles
-        at every resolution, and its (and the default's) time against the best single-level
+        at every resolution, and its (and rmtr.yaml's) time against the best single-level
         solver at 51k and 201k dofs. Off the trampoline a resolution whose single-level
         solvers were not run has no ratio."""
         own = SCENE_SOLVER.get(scene, FREE_HANGING_SOLVER)
