@@ -17,6 +17,22 @@
 
 namespace mlshell {
 
+namespace {
+
+/// The PETSc options database as one "-name value ..." line: the options in effect, mlshell's
+/// defaults included (StepSolver sets them wherever no file or command line did), so that a
+/// run's configuration can be read and repeated from its summary.
+std::string petsc_options_in_effect() {
+  char* all = nullptr;
+  if (PetscOptionsGetAll(nullptr, &all) || !all) return "";
+  std::string text(all);
+  PetscFree(all);
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+}  // namespace
+
 PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converged) {
   PetscFunctionBeginUser;
   const bool frame_due = force || n % scene_.output.every == 0;
@@ -173,8 +189,8 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
     }
     Json::Object solver{
         {"type", Json(solver_ ? solver_->type() : std::string("none"))},
-        {"options_file", scene_.solver.options_file ? Json(scene_.solver.options_file->string())
-                                                    : Json(nullptr)},
+        {"options_file",
+         scene_.solver.options_file ? Json(scene_.solver.options_file->string()) : Json(nullptr)},
         {"iterations", Json(static_cast<long long>(total_iterations_))},
         {"linear_iterations", Json(static_cast<long long>(total_linear_iterations_))},
         {"solves", Json(static_cast<long long>(total_solves_))},
@@ -185,7 +201,8 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"force_scale", Json(last ? last->force_scale : 0.0)},
         {"objective_evaluations", Json(problem_->objective_evaluations())},
         {"hessian_evaluations", Json(problem_->hessian_evaluations())},
-        {"nonfinite_trial_points", Json(problem_->inadmissible_evaluations())}};
+        {"nonfinite_trial_points", Json(problem_->inadmissible_evaluations())},
+        {"petsc_options", Json(petsc_options_in_effect())}};
     if (!rmtr_totals_.levels.empty()) {
       // Work of RMTR summed over the steps (paper eq. 7.2-7.4); level 0 is the coarsest.
       Json::Array levels;

@@ -2,7 +2,9 @@
 # PETSc options files: a scene may name one (solver.options_file, relative to the scene), PETSc's
 # own -options_file works with plain and YAML files and replaces the scene's file (the two are
 # never mixed), -mlshell_scene_solver false ignores the scene's file, and the command line wins
-# over both. summary.json names the file in effect.
+# over both. summary.json names the file in effect and lists the options in effect.
+# petsc-options/rmtr-patch-dogleg.yaml spells out mlshell's default, and on 2 ranks the default
+# factorises the coarsest level whole on each rank (-tao_rmtr_coarse_redundant).
 #
 # usage: bash options_files.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -76,6 +78,12 @@ spelled=$(run_summary spelled -options_file "$SRC/petsc-options/rmtr-patch-dogle
 [[ "$default" == "$spelled" ]] || die "default '$default' but rmtr-patch-dogleg.yaml '$spelled'"
 factorised=$(run_summary factorised -options_file "$SRC/petsc-options/rmtr.yaml")
 [[ "$default" != "$factorised" ]] || die "rmtr.yaml ran the default: '$factorised'"
+echo "check: summary.json records the PETSc options in effect, mlshell's defaults included"
+options() { $PY -c "import json; print(json.load(open('$1/summary.json'))['solver']['petsc_options'])"; }
+[[ " $(options default) " == *" -tao_rmtr_smoother_pc vpatch "* ]] ||
+  die "default run's options: $(options default)"
+[[ " $(options factorised) " == *" -tao_rmtr_smoother_pc none "* ]] ||
+  die "rmtr.yaml run's options: $(options factorised)"
 
 echo "check: on 2 ranks the default factorises the coarsest level whole on each rank"
 coarse_pc() {  # coarse_pc ARGS...: the PC types of the coarsest level's first solve

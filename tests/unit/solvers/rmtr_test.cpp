@@ -97,13 +97,13 @@ double max_abs(const std::vector<double>& a) {
 
 TEST(Rmtr, TwoAndThreeLevelsReachTheMinimiserOfTheSingleLevelTrustRegion) {
   // Trampoline refined twice (1,083 dofs, levels 147 / 363 / 1,083) and the clamped plate;
-  // Dogleg smoothing (the default), STCG preconditioned by vertex patches, and the same with
-  // each level's Hessian kept for two accepted steps; each smoother also with Galerkin coarse
+  // factorised Dogleg smoothing (rmtr.yaml), STCG preconditioned by vertex patches, and the same
+  // with each level's Hessian kept for two accepted steps; each smoother also with Galerkin coarse
   // models, and the patch smoother with Galerkin models, a subspace step after each V-cycle and
   // rejected smoothing steps retried (rmtr-patch-galerkin.yaml); Dogleg smoothing with coarse
   // solves that start from the coarse levels' own iterates; Dogleg smoothing with inexact
   // Newton points from patch-preconditioned CG, with Galerkin models, subspace steps and retries
-  // (rmtr-patch-dogleg.yaml).
+  // (rmtr-patch-dogleg.yaml, mlshell's default).
   for (const char* smoother :
        {"dogleg", "stcg-vpatch", "stcg-vpatch-lag2", "dogleg-galerkin", "stcg-vpatch-galerkin",
         "stcg-vpatch-galerkin-subspace", "dogleg-iterate", "dogleg-vpatch-galerkin-subspace"})
