@@ -119,9 +119,10 @@ class Report:
         rows = [r for r in rows if r.get("preset") in (None, "", "denim")]
         self.add("## Tables 3–5: iterations per step, dt = 1\n\nEach cell: mlshell / paper. "
                  "TR is the single-level trust region with Dogleg; RMTR uses factorised Dogleg "
-                 "smoothing (`rmtr.yaml`, mlshell's default until 2026-12-05). Tolerance (7.1): \\|g\\| < 1e-7. Every study ignores "
-                 "the scenes' own solver files (the trampoline's is `rmtr-patch`; the other scenes "
-                 "use mlshell's default, `rmtr-patch-dogleg`).\n")
+                 "smoothing (`rmtr.yaml`, mlshell's default until 2026-12-05). Tolerance (7.1): "
+                 "\\|g\\| < 1e-7. Every study ignores the scenes' own solver files (the "
+                 "trampoline's is `rmtr-patch`; the other scenes use mlshell's default, "
+                 "`rmtr-patch-dogleg`).\n")
         tr = [r for r in rows if r["solver"] == "tr"]
         dofs = sorted({int(r["refine"]) for r in tr})
         body = []
@@ -411,8 +412,8 @@ class Report:
                                                                               solver=solver)),
                                        ok))
         self.add("## Parallel: 1 vs 2 ranks\n\nOne step of dt = 1; times in seconds by "
-                 "`-log_view` stage. `rmtr`: factorised Dogleg smoothing (`rmtr.yaml`); `rmtr-patch`: "
-                 "full-multigrid start and vertex-patch smoothing. *Shared*: the wall time of "
+                 "`-log_view` stage. `rmtr`: factorised Dogleg smoothing (`rmtr.yaml`); "
+                 "`rmtr-patch`: full-multigrid start and vertex-patch smoothing. *Shared*: the wall time of "
                  "one of two 1-rank copies run at once, which share the memory bandwidth and "
                  "caches as 2 ranks do; *ceiling* = 2 × 1-rank wall / shared wall, the speedup "
                  "of a perfectly parallel code on this machine.\n\n" + table(
@@ -462,8 +463,8 @@ class Report:
                      "or iterations · wall time · peak resident memory of the largest rank. "
                      "`rmtr`: Dogleg smoothing (a factorisation per smoothing step) after the "
                      "full-multigrid start (`rmtr.yaml`, mlshell's default until 2026-12-05; the "
-                     "trampoline scene's own solver is `rmtr-patch`); `rmtr-patch`: the start, then "
-                     "vertex-patch ST-CG smoothing (no factorisation above the coarsest level); "
+                     "trampoline scene's own solver is `rmtr-patch`); `rmtr-patch`: the start, "
+                     "then vertex-patch ST-CG smoothing (no factorisation above the coarsest level); "
                      "`rmtr-patch-vcycles`: the same V-cycles from the given iterate; "
                      "`rmtr-galerkin`: `rmtr` with Galerkin coarse models (JᵀHJ of the finer "
                      "level's Hessian, no coarse energy evaluations); `rmtr-patch-galerkin`: "
