@@ -56,6 +56,7 @@ CONDITION_NOTES = ("cond(H) > 1e8 at all resolutions; ~1e13 at ~50,000 dofs; "
 TIMESTEPS = (1 / 24, 1 / 12, 1 / 6, 1 / 3, 1 / 2, 1.0)
 
 
-def levels_for_dofs(dofs):
-    """Number of RMTR levels the paper uses at a finest resolution (coarsest: 147 dofs)."""
-    return DOFS.index(dofs) + 1 if dofs in DOFS else None
+def levels_for_refine(refine):
+    """Number of RMTR levels at a finest refinement: the cage and each refinement of it, as in
+    the paper (2 levels: one refinement of the coarsest cage)."""
+    return int(refine) + 1

@@ -77,13 +77,18 @@ def options(name, source):
     return [str(source / o[1:]) if o.startswith("@") else o for o in SOLVERS[name][1]]
 
 
-def with_tolerance(name, source, tol, max_it=None):
-    """Options of `name` stopping at ‖∇f‖₂ < tol (and at most max_it iterations if given)."""
+def with_tolerance(name, source, tol, max_it=None, relative=True):
+    """Options of `name` stopping at ‖∇f‖₂ < tol (and at most max_it iterations if given).
+    With relative=False the relative test ‖∇f‖/‖∇f₀‖ < 1e-10 is off too, so that a solve from a
+    state with a large gradient (the drape's prescribed corners: ‖∇f₀‖ > 10⁵) is not stopped
+    far above tol."""
     opts = options(name, source)
     if "-mlshell_step_solver" in opts:
         opts += ["-snes_atol", repr(tol)] + (["-snes_max_it", str(max_it)] if max_it else [])
+        opts += [] if relative else ["-snes_rtol", "0"]
     else:
         opts += ["-tao_gatol", repr(tol)] + (["-tao_max_it", str(max_it)] if max_it else [])
+        opts += [] if relative else ["-tao_gttol", "0"]
     return opts
 
 
