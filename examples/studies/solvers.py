@@ -66,6 +66,16 @@ SOLVERS = {
     "linearized": ("linearized equation (one Newton step)", ["-tao_type", "linearized"]),
 }
 
+# The configuration without fine factorisations that solves each scene: the trampoline names its
+# own (examples/trampoline.yaml), the others use mlshell's default.
+SCENE_SOLVERS = {"trampoline": "rmtr-patch"}
+DEFAULT_SOLVER = "rmtr-patch-dogleg"
+
+
+def scene_solver(scene):
+    return SCENE_SOLVERS.get(scene, DEFAULT_SOLVER)
+
+
 PEERS = ["bntr-mumps", "bnls-mumps", "bntr-gamg", "bnls-gamg", "bntr-boomeramg",
          "bnls-boomeramg", "snes-boomeramg", "snes-mumps"]
 

@@ -23,7 +23,7 @@ EXPECTED_ROWS = {
     "condition": 4,         # 2 resolutions + 2 penalties
     "timestep": 10,         # 5 solvers x 2 time steps
     "accuracy": 8,          # 2 solvers x 2 resolutions x 2 tolerances
-    "peers": 9,             # RMTR + 8 PETSc configurations
+    "peers": 10,            # rmtr.yaml, the scene's own configuration + 8 PETSc ones
     "parallel": 6,          # rmtr, rmtr-patch and rmtr-patch-dogleg on 1 and 2 ranks
     "scaling": 17,          # refine 1: 9 solvers; refine 2: 8 (not the paper's ST-CG)
 }

@@ -173,7 +173,7 @@ class ReportFromKnownRows(unittest.TestCase):
                       "V-cycle;", text)
         self.assertNotIn("per V-cycle", text.split("(trampoline, rmtr-patch) |")[1].split("\n")[0])
         self.assertIn("| 4.00 |", text)  # bntr-gamg: 40 s / 10 s
-        self.assertIn("bntr-gamg takes 4.00× RMTR's time", text)  # the failed bnls is not "best"
+        self.assertIn("bntr-gamg takes 4.00× rmtr's time", text)  # the failed bnls is not "best"
         self.assertIn("| 4.00× | met |", text)
         self.assertRegex(text, r"\| 1\.25×; RMTR on 2 ranks: [^|]*Solve 14 s \| \*\*not met\*\* \|")
         # Rows without a solver are the default's; each configuration has its own goal row.
@@ -260,6 +260,19 @@ class ReportFromKnownRows(unittest.TestCase):
                       text)
         self.assertNotIn("faster than the best single-level solver at 51,483 dofs "
                          "(reentrant_corner)", text)
+
+    def test_peer_ratios_are_to_the_scenes_own_configuration(self):
+        # The trampoline's own configuration (rmtr-patch) is the reference where it was run, and
+        # rmtr.yaml's row is neither the reference nor a peer.
+        write(self.out, "peers", [
+            run_row("trampoline", 51483, 1, solver="rmtr", wall_time=4.0),
+            run_row("trampoline", 51483, 1, solver="rmtr-patch", wall_time=3.0),
+            run_row("trampoline", 51483, 7, solver="bnls-mumps", wall_time=12.0)])
+        text = self.build()
+        self.assertIn("bnls-mumps takes 4.00× rmtr-patch's time", text)
+        self.assertIn("| rmtr-patch ≥ 3× faster than the best PETSc solver at 51,483 dofs "
+                      "(trampoline) | 4.00× | met |", text)
+        self.assertIn("| trampoline | 51,483 | rmtr | 4 | 1 |  | 1.33 |", text)
 
     def test_goals_not_measured_are_said_so(self):
         write(self.out, "projection", [run_row("trampoline", 3675, 81, projection="reverse",
