@@ -8,10 +8,9 @@
 //   ‖f_ext‖ the norm of the external forces (gravity, loads), so that it holds for any units
 //   and size; the paper's scenes (‖f_ext‖ < 1) keep gatol.
 // i.e. the recursive multilevel trust region on every level it is given (one level: Local_TR),
-// configured as petsc-options/rmtr-patch-dogleg.yaml: -tao_rmtr_smoother_qp dogleg
-// -tao_rmtr_smoother_pc vpatch -tao_rmtr_stcg_max_it 60 -tao_rmtr_newton_rtol 1e-2
-// -tao_rmtr_coarse_model galerkin -tao_rmtr_subspace 5 -tao_rmtr_retries 3
-// -tao_rmtr_stagnation_window 6 (RMTR's own defaults are the paper's).
+// configured as petsc-options/rmtr-patch-dogleg.yaml spells out (the keys are set in
+// step_solver.cpp, and cli.options_files checks the two agree; RMTR's own defaults are the
+// paper's).
 // For the KSP of whichever Newton-type PETSc solver is chosen instead (prefix tao_bnk_ for
 // bntr/bnls/bqnkls..., tao_nls_ for nls, ...): ksp_type stcg, pc_type lu,
 // pc_factor_mat_solver_type mumps.
