@@ -15,6 +15,7 @@
 #include <regex>
 #include <string>
 
+#include "mlshell/build_info.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/scene.hpp"
 #include "mlshell/simulation.hpp"
@@ -24,6 +25,7 @@ namespace {
 const char* kUsage =
     "usage: mlshell SCENE.yaml [PETSc options]\n"
     "       mpirun -n 2 mlshell SCENE.yaml -tao_monitor -log_view\n"
+    "       mlshell --help | --version (mlshell's version, source commit and PETSc version)\n"
     "\n"
     "Simulates the thin shell or cloth described by SCENE.yaml and writes its results to the\n"
     "scene's output folder (summary.json, steps.csv, <name>.xdmf + HDF5 frames, frame_*.obj).\n"
@@ -93,6 +95,12 @@ const char* kUsage =
 bool wants_help(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return true;
+  return false;
+}
+
+bool wants_version(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--version")) return true;
   return false;
 }
 
@@ -166,6 +174,10 @@ void apply_scene_solver_file(mlshell::Scene& scene, int argc, char** argv) {
 int main(int argc, char** argv) {
   if (wants_help(argc, argv)) {
     std::cout << kUsage << mlshell::scene_format_help() << std::endl;
+    return 0;
+  }
+  if (wants_version(argc, argv)) {
+    std::cout << mlshell::build_description() << std::endl;
     return 0;
   }
   const char* scene_path = scene_argument(argc, argv);

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "mlshell/build_info.hpp"
 #include "mlshell/effects.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
@@ -247,8 +248,12 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                             {"max_violation_all_steps", Json(violation_max_[i])},
                             {"warning_threshold", Json(kConstraintWarning * disc_->mesh_size())}}));
     }
+    const BuildInfo& build = build_info();
     Json::Object top{
         {"scene", Json(scene_.name)},
+        {"build", Json(Json::Object{{"mlshell", Json(build.version)},
+                                    {"commit", Json(build.commit)},
+                                    {"petsc", Json(build.petsc)}})},
         {"status", Json(status)},
         {"dofs", Json(disc_->num_dofs())},
         {"discretization", Json(disc_->kind())},

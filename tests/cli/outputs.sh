@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Result files of a 2-step run on 2 ranks with every output format: summary.json, steps.csv,
 # the XDMF series and the HDF5 frames it references, the OBJ frames; no temporary files left.
+# summary.json and --version name the build (version, source commit, PETSc).
 #
 # usage: bash outputs.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -34,8 +35,19 @@ $(tail -n 20 stdout.txt)
 $(tail -n 20 stderr.txt)"
 grep -q "results in" stdout.txt || die "stdout does not say 'results in': $(cat stdout.txt)"
 
+echo "check: --version names mlshell's version, the source commit and PETSc's version"
+version_line=$("$MLSHELL" --version) || die "mlshell --version: exit status $?"
+[[ $version_line =~ ^mlshell\ [0-9]+\.[0-9]+\.[0-9]+\ \(commit\ [^\)]+\),\ PETSc\ [0-9]+\.[0-9]+\.[0-9]+$ ]] ||
+  die "mlshell --version printed '$version_line'"
+# In a git checkout the commit is the one the sources are at (a build that did not follow the
+# checkout would name an older one); the test runs after the build, so HEAD has not moved.
+head_commit=unknown
+if git -C "$SRC" rev-parse --git-dir >/dev/null 2>&1; then
+  head_commit=$(git -C "$SRC" rev-parse HEAD)
+fi
+
 echo "check: summary.json, steps.csv, XDMF + HDF5, OBJ frames; no temporary files"
-"$PY" - out/outputs <<'EOF'
+VERSION_LINE=$version_line HEAD_COMMIT=$head_commit "$PY" - out/outputs <<'EOF'
 import csv, json, math, os, re, sys
 import xml.etree.ElementTree as ET
 
@@ -70,6 +82,18 @@ check(len(tip.get("displacement", [])) == 3 and tip["displacement"][2] < 0,
       f"summary.json: probe tip displacement {tip.get('displacement')!r} (expected to fall)")
 for k in ("gradient_norm", "wall_time", "time"):
     check(isinstance(s.get(k), (int, float)), f"summary.json: {k} {s.get(k)!r}")
+# The build that wrote it: the same as --version says, at the checkout's commit.
+build = s.get("build", {})
+described = f"mlshell {build.get('mlshell')} (commit {build.get('commit')}), PETSc {build.get('petsc')}"
+check(described == os.environ["VERSION_LINE"],
+      f"summary.json: build {build!r} differs from --version: {os.environ['VERSION_LINE']!r}")
+head, commit = os.environ["HEAD_COMMIT"], str(build.get("commit"))
+if head == "unknown":
+    check(commit == "unknown", f"summary.json: build.commit {commit!r} outside a git checkout")
+else:
+    hash_part = commit.removesuffix("-modified")
+    check(len(hash_part) >= 7 and head.startswith(hash_part),
+          f"summary.json: build.commit {commit!r} is not the checkout's HEAD {head}")
 
 # steps.csv: a header and one row per step
 with open(path("steps.csv"), newline="", encoding="utf-8") as f:
