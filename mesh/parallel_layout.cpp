@@ -74,6 +74,18 @@ ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc,
   }
   for (int v = 0; v < np; ++v)
     if (point_owner[v] == size_) point_owner[v] = stencil_owner[v];
+  // The vertex patch of an owned point (vertex_patches) is every corner of its faces: ghosts too,
+  // where no local element's stencil reaches them (ghost-ring points at the partition's edge), so
+  // that the patches, and PC vpatch with them, do not depend on the partition.
+  {
+    std::vector<std::vector<int>> faces_of(np);
+    for (int f = 0; f < disc.num_faces(); ++f)
+      for (int v : disc.corners(f)) faces_of[v].push_back(f);
+    for (int v = 0; v < np; ++v)
+      if (point_owner[v] == rank_)
+        for (int f : faces_of[v])
+          for (int w : disc.corners(f)) local[w] = 1;
+  }
   // PETSc numbering: rank by rank, natural order within a rank.
   petsc_of_natural_.assign(np, -1);
   int next = 0;

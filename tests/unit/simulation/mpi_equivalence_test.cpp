@@ -196,8 +196,9 @@ TEST(MpiEquivalence, TheDefaultSolverReachesTheSameStateOnOneAndTwoRanks) {
   EXPECT_GT(expect_same_state(1, 1, {}, "default-drooping", "drooping.yaml"), 2);
 }
 
-// RMTR with the vertex-patch smoother (patches truncated at rank boundaries on 2 ranks, so the
-// preconditioner differs there) reaches the same minimiser.
+// RMTR with the vertex-patch smoother (the same preconditioner on 1 and 2 ranks but for the
+// order of its sums, MpiVertexPatchPc.IsTheSameOperatorOnOneAndTwoRanks) reaches the same
+// minimiser.
 TEST(MpiEquivalence, PatchSmoothedRmtrReachesTheSameStateOnOneAndTwoRanks) {
   expect_same_state(2, 1, {{"-tao_rmtr_smoother_qp", "stcg"}, {"-tao_rmtr_smoother_pc", "vpatch"}},
                     "vpatch");
