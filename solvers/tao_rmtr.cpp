@@ -26,6 +26,9 @@
 // Options (Table 2 defaults):
 //   -tao_rmtr_levels <all>           number of levels used (the finest ones of the hierarchy)
 //   -tao_rmtr_mu1 1 -tao_rmtr_mu2 1  pre- and post-smoothing steps
+//   -tao_rmtr_cycle_type v|w         cycles of a coarse level (above the coarsest) per visit:
+//                                    one (V, the paper) or two (W), the second from where the
+//                                    first ended, within the same bound on its distance
 //   -tao_rmtr_coarse_max_it <μ₁+μ₂>  Local_TR steps on the coarsest level per visit
 //   -tao_rmtr_delta0 1 -tao_rmtr_eta1 0.1 -tao_rmtr_eta2 0.75 -tao_rmtr_gamma1 0.5
 //   -tao_rmtr_gamma2 2 -tao_rmtr_eps_delta 0.001
@@ -106,6 +109,8 @@ enum Projection { kReverse = 0, kLeastSquares = 1, kRestriction = 2 };
 const char* const kProjectionNames[] = {"reverse",    "lsq",         "restriction",
                                         "Projection", "PROJECTION_", nullptr};
 const char* const kQpNames[] = {"dogleg", "stcg", "RmtrQp", "RMTR_QP_", nullptr};
+enum CycleType { kVCycle = 0, kWCycle = 1 };
+const char* const kCycleTypeNames[] = {"v", "w", "CycleType", "CYCLE_", nullptr};
 enum CoarseModel { kFirstOrder = 0, kGalerkin = 1 };
 enum CoarseStart { kProjected = 0, kIterate = 1 };
 const char* const kCoarseStartNames[] = {"projection", "iterate", "CoarseStart", "COARSE_START_",
@@ -134,7 +139,7 @@ struct RmtrContext {
   MultilevelObjective* hierarchy = nullptr;
   PetscInt requested_levels = 0, mu1 = 1, mu2 = 1, coarse_max_it = -1, stcg_max_it = 10;
   PetscInt projection = kReverse, smoother_qp = 1, coarse_qp = 0, coarse_model = kFirstOrder;
-  PetscInt coarse_start = kProjected;
+  PetscInt coarse_start = kProjected, cycle_type = kVCycle;
   char smoother_pc[64] = "none";
   PetscInt hessian_lag = 0, fmg_cycles = 1000, subspace = 0, retries = 0;
   PetscInt coarse_redundant = 20000;  // dofs up to which the coarsest Dogleg gathers its level
@@ -354,7 +359,13 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
   if (attempted) {
     std::vector<long> coarse_successful(successful.size(), 0);
     PetscReal coarse_delta = *delta;  // Δ_{c,0}^{l−1} = Δ_{c,μ₁}^l
-    PetscCall(cycle(tao, c, l - 1, *delta, &coarse_delta, coarse_successful));
+    // A W-cycle minimises a coarse level above the coarsest with two of its cycles, the second
+    // from where the first ended (same model, radius and bound), unless the first left it done.
+    const int visits = c.cycle_type == kWCycle && l - 1 > 0 ? 2 : 1;
+    for (int k = 0; k < visits; ++k) {
+      if (k > 0 && (lc.tr->gradient_norm() <= tao->gatol || coarse_delta <= 0.0)) break;
+      PetscCall(cycle(tao, c, l - 1, *delta, &coarse_delta, coarse_successful));
+    }
     // h(x₀) − h(x*) as the coarse steps measured it: at the round-off floor the difference of
     // the two values has either sign, and a sound correction would be discarded on it.
     const PetscReal coarse_reduction = lc.tr->reduction();
@@ -675,6 +686,10 @@ PetscErrorCode set_from_options(Tao tao, PetscOptionItems* PetscOptionsObject) {
                             c->requested_levels, &c->requested_levels, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_mu1", "pre-smoothing steps", "", c->mu1, &c->mu1, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_mu2", "post-smoothing steps", "", c->mu2, &c->mu2, nullptr));
+  PetscCall(PetscOptionsEnum("-tao_rmtr_cycle_type",
+                             "v: one cycle of each coarse level per visit (the paper); w: two", "",
+                             kCycleTypeNames, static_cast<PetscEnum>(c->cycle_type),
+                             reinterpret_cast<PetscEnum*>(&c->cycle_type), nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_coarse_max_it", "steps on the coarsest level (-1: mu1+mu2)",
                             "", c->coarse_max_it, &c->coarse_max_it, nullptr));
   PetscCall(PetscOptionsInt("-tao_rmtr_stcg_max_it",
@@ -788,13 +803,14 @@ PetscErrorCode view(Tao tao, PetscViewer viewer) {
                     : static_cast<int>(c->levels.size());
   PetscCall(PetscViewerASCIIPrintf(
       viewer,
-      "  RMTR (Alg. 4.2): %d level(s)%s, V-cycle mu1 = %" PetscInt_FMT ", mu2 = %" PetscInt_FMT
+      "  RMTR (Alg. 4.2): %d level(s)%s, %s-cycle mu1 = %" PetscInt_FMT ", mu2 = %" PetscInt_FMT
       ", coarsest %" PetscInt_FMT " step(s) of %s, smoother %s (%" PetscInt_FMT
       " iterations or a model gradient of %g gatol, PC %s), projection %s, %s coarse models "
       "from the %s\n",
-      n, c->hierarchy ? "" : " (no hierarchy attached)", c->mu1, c->mu2, c->coarse_max_it,
-      kQpNames[c->coarse_qp], kQpNames[c->smoother_qp], c->stcg_max_it, (double)c->stcg_target,
-      c->smoother_pc, kProjectionNames[c->projection], kCoarseModelNames[c->coarse_model],
+      n, c->hierarchy ? "" : " (no hierarchy attached)", c->cycle_type == kWCycle ? "W" : "V",
+      c->mu1, c->mu2, c->coarse_max_it, kQpNames[c->coarse_qp], kQpNames[c->smoother_qp],
+      c->stcg_max_it, (double)c->stcg_target, c->smoother_pc, kProjectionNames[c->projection],
+      kCoarseModelNames[c->coarse_model],
       c->coarse_start == kIterate ? "coarse iterate" : "projection"));
   PetscCall(PetscViewerASCIIPrintf(
       viewer, "  delta0 %g, eta1 %g, eta2 %g, gamma1 %g, gamma2 %g, eps_delta %g\n",
