@@ -1,6 +1,8 @@
 // Vertex patches of a level: for every point a rank owns, the point and its neighbours across
 // the faces around it (a Catmull–Clark control point's 3×3 block of control points, ghosts
-// included; a triangle vertex's one-ring), restricted to the rank's local points. They are the
+// included; a triangle vertex's one-ring). Every member is a local point of the rank
+// (ParallelLayout makes those no local element reaches ghosts), so the patches, and the
+// smoother, do not depend on the partition. They are the
 // subdomains of the vertex-patch smoother (PC "vpatch", vertex_patch_pc.hpp): the near-null
 // modes of thin shells that point smoothers cannot reduce and the coarse levels cannot
 // represent (boundary slopes against the ghost ring, inextensional bending) are local to such
