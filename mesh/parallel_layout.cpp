@@ -43,6 +43,14 @@ std::vector<int> partition_elements(const Discretization& disc, int parts) {
   return owner;
 }
 
+/// The faces each point is a corner of (every face, the ghost ring's included).
+std::vector<std::vector<int>> faces_around_points(const Discretization& disc) {
+  std::vector<std::vector<int>> faces_of(disc.num_points());
+  for (int f = 0; f < disc.num_faces(); ++f)
+    for (int v : disc.corners(f)) faces_of[v].push_back(f);
+  return faces_of;
+}
+
 }  // namespace
 
 ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc)
@@ -78,9 +86,7 @@ ParallelLayout::ParallelLayout(MPI_Comm comm, const Discretization& disc,
   // where no local element's stencil reaches them (ghost-ring points at the partition's edge), so
   // that the patches, and PC vpatch with them, do not depend on the partition.
   {
-    std::vector<std::vector<int>> faces_of(np);
-    for (int f = 0; f < disc.num_faces(); ++f)
-      for (int v : disc.corners(f)) faces_of[v].push_back(f);
+    const auto faces_of = faces_around_points(disc);
     for (int v = 0; v < np; ++v)
       if (point_owner[v] == rank_)
         for (int f : faces_of[v])
@@ -242,9 +248,7 @@ std::shared_ptr<const VertexPatches> ParallelLayout::vertex_patches() const {
   p->blocks.resize(local_points_.size());
   for (size_t i = 0; i < local_points_.size(); ++i)
     p->blocks[i] = petsc_of_natural_[local_points_[i]];
-  std::vector<std::vector<int>> faces_of(disc_.num_points());
-  for (int f = 0; f < disc_.num_faces(); ++f)
-    for (int v : disc_.corners(f)) faces_of[v].push_back(f);
+  const auto faces_of = faces_around_points(disc_);
   p->patches.resize(num_owned_);
   for (int i = 0; i < num_owned_; ++i) {
     const int v = local_points_[i];
