@@ -255,7 +255,7 @@ std::shared_ptr<const VertexPatches> ParallelLayout::vertex_patches() const {
     std::set<int> members;
     for (int f : faces_of[v])
       for (int w : disc_.corners(f))
-        if (w != v && local_of_natural_[w] >= 0) members.insert(local_of_natural_[w]);
+        if (w != v) members.insert(local_of_natural_[w]);  // local: the constructor sees to it
     p->patches[i].push_back(i);
     p->patches[i].insert(p->patches[i].end(), members.begin(), members.end());
   }
