@@ -4,6 +4,9 @@ from pathlib import Path
 
 from runner import SOURCE, Runner
 
+# Every CSV's last column: the mlshell build (commit) that measured the row.
+PROVENANCE = "commit"
+
 
 class Context:
     def __init__(self, runner: Runner, mode: str, out: Path, scenes=None, solvers=None):
@@ -36,14 +39,16 @@ class Context:
         return self._memo[key]
 
     def write_csv(self, name, rows, columns, key=("scene",)):
-        """Writes OUT/<name>.csv (header `columns`), atomically; returns its path. Rows an
-        earlier invocation wrote for other values of `key` (scenes; for some studies scene and
-        solver) are kept, so that --scenes and --solvers runs fill one table."""
+        """Writes OUT/<name>.csv (header `columns`, then PROVENANCE), atomically; returns its
+        path. Rows an earlier invocation wrote for other values of `key` (scenes; for some
+        studies scene and solver) are kept, so that --scenes and --solvers runs fill one table."""
         path = self.out / f"{name}.csv"
+        columns = list(columns) + ([] if PROVENANCE in columns else [PROVENANCE])
         if path.is_file():
             old = read_csv(path)
             mine = {tuple(str(r[k]) for k in key) for r in rows}
-            if old and list(old[0]) == columns:
+            # Rows written before the build column existed keep it empty: "not recorded".
+            if old and [c for c in old[0] if c != PROVENANCE] == columns[:-1]:
                 rows = [r for r in old if tuple(r[k] for k in key) not in mine] + list(rows)
         tmp = path.with_suffix(".csv.tmp")
         with open(tmp, "w", newline="") as f:

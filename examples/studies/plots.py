@@ -19,7 +19,8 @@ def _save(fig, out, name):
 
 
 def iterations(rows, out):
-    """Table 3/4 as curves: TR iterations vs dofs and RMTR V-cycles vs levels, with the paper's."""
+    """Table 3/4 as curves: TR iterations vs dofs and RMTR V-cycles vs levels (rmtr.yaml solid,
+    mlshell's default dashed), with the paper's."""
     if not rows:
         return None
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -32,10 +33,12 @@ def iterations(rows, out):
         ref = [(d, i) for d, i in zip(paper.DOFS, paper.TR_ITERATIONS[scene]) if i]
         left.loglog(*zip(*ref), MARKERS[k] + ":", color=color, alpha=0.5, mfc="none",
                     label=f"{scene} (paper)")
-        rm = [(number(r["levels"]), number(r["iterations"])) for r in rows
-              if r["scene"] == scene and r["solver"] == "rmtr" and r["converged"] == "1"]
-        if rm:
-            right.semilogy(*zip(*rm), MARKERS[k] + "-", color=color, label=f"{scene} (mlshell)")
+        for solver, style in (("rmtr", "-"), ("rmtr-patch-dogleg", "--")):
+            rm = [(number(r["levels"]), number(r["iterations"])) for r in rows
+                  if r["scene"] == scene and r["solver"] == solver and r["converged"] == "1"]
+            if rm:
+                right.semilogy(*zip(*rm), MARKERS[k] + style, color=color,
+                               label=f"{scene} ({solver})")
         right.semilogy(paper.LEVELS, paper.RMTR_CYCLES[scene], MARKERS[k] + ":", color=color,
                        alpha=0.5, mfc="none", label=f"{scene} (paper)")
     left.set(xlabel="dofs", ylabel="TR iterations", title="Table 3: single-level TR, dt = 1")

@@ -9,8 +9,9 @@ from pathlib import Path
 
 import paper
 import plots
+import study_iterations
 import study_scaling
-from context import number, read_csv
+from context import PROVENANCE, number, read_csv
 from solvers import scene_solver
 
 GOAL_SPEEDUP_PEERS = 3.0
@@ -114,11 +115,13 @@ class Report:
         table1 = [r for r in rows if r.get("preset") == "denim-table1"]
         rows = [r for r in rows if r.get("preset") in (None, "", "denim")]
         self.add("## Tables 3–5: iterations per step, dt = 1\n\nEach cell: mlshell / paper. "
-                 "TR is the single-level trust region with Dogleg; RMTR uses factorised Dogleg "
-                 "smoothing (`rmtr.yaml`, mlshell's default until 2026-12-05). Tolerance (7.1): "
-                 "\\|g\\| < 1e-7. Every study ignores the scenes' own solver files (the "
-                 "trampoline's is `rmtr-patch`; the other scenes use mlshell's default, "
-                 "`rmtr-patch-dogleg`).\n")
+                 "TR is the single-level trust region with Dogleg; RMTR runs factorised Dogleg "
+                 "smoothing (`rmtr.yaml`, mlshell's default until 2026-12-05) and mlshell's "
+                 "default (`rmtr-patch-dogleg.yaml`). Tolerance (7.1): \\|g\\| < 1e-7; rows "
+                 "without a build under Provenance also stopped at \\|g\\|/\\|g₀\\| < "
+                 "1e-10, which ended the drape (\\|g₀\\| > 10⁵) at up to \\|g\\| = 3e-4. "
+                 "Every study ignores the scenes' own solver files (the trampoline's is "
+                 "`rmtr-patch`; the other scenes use mlshell's default).\n")
         tr = [r for r in rows if r["solver"] == "tr"]
         dofs = sorted({int(r["refine"]) for r in tr})
         body = []
@@ -132,8 +135,17 @@ class Report:
             body.append(line)
         self.add("### Table 3: single-level TR iterations\n\n" + table(
             ["scene"] + [f"refine {k}" for k in dofs], body))
-        rm = [r for r in rows if r["solver"] == "rmtr"]
+        for solver in [s for s in study_iterations.RMTR_SOLVERS
+                       if any(r["solver"] == s for r in rows)]:
+            self.table4(solver, [r for r in rows if r["solver"] == solver])
+        self.image(plots.iterations(rows, self.out))
+        self.iterations_by_preset(rows, table1)
+
+    def table4(self, solver, rm):
+        """Table 4 for one RMTR configuration: its V-cycles beside the paper's, in the headline
+        (mlshell's default's, where measured), and the goal of matching the paper."""
         levels = sorted({int(r["levels"]) for r in rm})
+        default = solver == study_iterations.RMTR_SOLVERS[-1]
         body, met, compared = [], 0, 0
         for scene in paper.SCENES:
             line = [scene]
@@ -147,16 +159,16 @@ class Report:
                     if r["converged"] == "1" and number(r["iterations"]) <= ref:
                         met += 1
                     self.headline.append(
-                        ("V-cycles", f"{scene}, {lv} levels ({count(r['dofs'])} dofs)",
+                        (f"V-cycles, {solver}", f"{scene}, {lv} levels ({count(r['dofs'])} dofs)",
                          f"{outcome(r)} vs paper {ref:,}"))
             body.append(line)
-        self.add("### Table 4: RMTR V-cycles vs number of levels\n\n" + table(
+        title = ("mlshell's default (`rmtr-patch-dogleg.yaml`)" if default else
+                 "factorised Dogleg smoothing (`rmtr.yaml`)")
+        self.add(f"### Table 4: RMTR V-cycles vs number of levels, {title}\n\n" + table(
             ["scene"] + [f"{k} levels" for k in levels], body))
         if compared:
-            self.goals.append(("RMTR V-cycles at or below the paper's Table 4",
+            self.goals.append((f"RMTR V-cycles at or below the paper's Table 4 ({solver})",
                                f"{met} of {compared} cells", met == compared))
-        self.image(plots.iterations(rows, self.out))
-        self.iterations_by_preset(rows, table1)
 
     def iterations_by_preset(self, rows, table1):
         """The same solves with Table 1 as printed, and the elastic energy of every final state
@@ -548,17 +560,38 @@ class Report:
                     self.goals.append((f"{name} {where}", "no converged run to compare"
                                        if best else "no single-level solver converged", False))
 
+    def provenance(self):
+        """Which mlshell build measured each CSV's rows (their PROVENANCE column)."""
+        body = []
+        for path in sorted(self.out.glob("*.csv")):
+            rows = read_csv(path)
+            builds = {}
+            for r in rows:
+                build = r.get(PROVENANCE) or "not recorded"
+                builds[build] = builds.get(build, 0) + 1
+            listed = sorted(builds.items(), key=lambda b: (b[0] == "not recorded", -b[1]))
+            body.append([path.name, len(rows), ", ".join(f"{b} ({n})" for b, n in listed)])
+        if body:
+            self.add("## Provenance\n\nThe mlshell build (`mlshell --version`, `summary.json` "
+                     "`build.commit`; `-modified`: with uncommitted changes) that measured each "
+                     "file's rows, with their number. Rows from before 2026-12-05 did not record "
+                     "it; meta.json lists the commands and dates.\n\n" +
+                     table(["file", "rows", "builds (rows)"], body))
+
     def write(self):
         for study in (self.iterations, self.work, self.projection, self.condition,
-                      self.timestep, self.accuracy, self.peers, self.parallel, self.scaling):
+                      self.timestep, self.accuracy, self.peers, self.parallel, self.scaling,
+                      self.provenance):
             study()
         m = self.meta
         runs = m.get("runs", [])
         head = ["# mlshell convergence studies\n",
                 f"Mode: **{m.get('mode', '?')}**, {m.get('ranks', '?')} MPI ranks, "
-                f"{m.get('cores', '?')} cores, commit {m.get('commit', '?')}. Reproduce (each "
-                "command adds its studies' CSV files to this folder):\n\n" +
-                "".join(f"- `{r['command']}` ({r['date']}, {r['elapsed']:.0f} s)\n"
+                f"{m.get('cores', '?')} cores. Reproduce (each command adds its studies' CSV "
+                "files to this folder; the build that ran it, where recorded, and under "
+                "Provenance the build of every row):\n\n" +
+                "".join(f"- `{r['command']}` ({r['date']}, {r['elapsed']:.0f} s"
+                        + (f", build {r['build']}" if r.get("build") else "") + ")\n"
                         for r in runs)]
         head.append("## Headline\n\n" + (table(["measure", "case", "value"], self.headline)
                                          if self.headline else "No study produced a headline "

@@ -62,6 +62,16 @@ class Runner:
         self.verbose = verbose
         self.max_refine = max_refine
 
+    def build(self):
+        """The commit mlshell was built from (`mlshell --version`), '' if it does not say."""
+        try:
+            out = subprocess.run([str(self.mlshell), "--version"], capture_output=True,
+                                 text=True, timeout=60, env=mpi_environment()).stdout
+        except (OSError, subprocess.TimeoutExpired):
+            return ""
+        m = re.search(r"\(commit ([^)\s]+)\)", out)
+        return m.group(1) if m else ""
+
     def scene_path(self, scene):
         path = SOURCE / "examples" / f"{scene}.yaml"
         if not path.is_file():
@@ -174,7 +184,11 @@ def describe(result):
 def solver_fields(result):
     """The columns every study shares, from one run's summary (empty when it has none)."""
     s = result["summary"]
-    base = {"scene": result["scene"], "refine": result["refine"], "ranks": result["ranks"]}
+    # The build that measured the row (summary.json "build", mlshell --version): the studies may
+    # run a copy of an earlier build than the checkout's.
+    build = (s or {}).get("build", {}).get("commit", "")
+    base = {"scene": result["scene"], "refine": result["refine"], "ranks": result["ranks"],
+            "commit": build}
     crashed = not result.get("skipped") and not result["timed_out"] and \
         result["exit_code"] not in (0, 3)
     if not s or crashed:  # a summary a crashed run left behind is not its result

@@ -17,7 +17,6 @@ import argparse
 import datetime
 import json
 import os
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -58,7 +57,8 @@ def arguments(argv):
                    help=f"only these scenes ({', '.join(SCENES)}); default: each study's own")
     p.add_argument("--solvers", nargs="+", metavar="SOLVER", choices=list(SOLVERS),
                    help="only these solver configurations (studies that compare several: "
-                        "scaling)")
+                        "iterations, parallel, scaling); their rows replace only the same "
+                        "solvers' rows")
     p.add_argument("--max-refine", type=int, default=8, metavar="R",
                    help="skip solves finer than geometry.refine R (e.g. 3: at most 3,675 dofs)")
     p.add_argument("--build", default=str(SOURCE / "build"), help="folder holding mlshell")
@@ -80,14 +80,6 @@ def arguments(argv):
     return a
 
 
-def commit():
-    try:
-        return subprocess.run(["git", "-C", str(SOURCE), "rev-parse", "--short", "HEAD"],
-                              capture_output=True, text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
 def main(argv):
     a = arguments(argv)
     a.out.mkdir(parents=True, exist_ok=True)
@@ -95,8 +87,8 @@ def main(argv):
         print(f"wrote {report.Report(a.out).write()}")
         return 0
     names = a.only or list(STUDIES)
-    ctx = Context(Runner(a.build, a.out, a.ranks, a.timeout,
-                         max_refine=a.max_refine), a.mode, a.out, a.scenes, a.solvers)
+    runner = Runner(a.build, a.out, a.ranks, a.timeout, max_refine=a.max_refine)
+    ctx = Context(runner, a.mode, a.out, a.scenes, a.solvers)
     start = time.monotonic()
     for i, name in enumerate(names, 1):
         print(f"studies: [{i}/{len(names)}] {name} ({a.mode}), {time.monotonic() - start:.0f} s "
@@ -114,9 +106,11 @@ def main(argv):
     meta = json.loads(meta_path.read_text()) if meta_path.is_file() else {"runs": []}
     if meta.get("mode", a.mode) != a.mode or not isinstance(meta.get("runs"), list):
         meta = {"runs": []}
-    meta.update(mode=a.mode, ranks=a.ranks, cores=os.cpu_count(), commit=commit())
+    meta.update(mode=a.mode, ranks=a.ranks, cores=os.cpu_count())
+    meta.pop("commit", None)  # the checkout's, which need not be the build's: each run says its own
     meta["runs"].append({"command": command, "studies": names, "elapsed": time.monotonic() - start,
-                         "date": datetime.datetime.now().isoformat(timespec="seconds")})
+                         "date": datetime.datetime.now().isoformat(timespec="seconds"),
+                         "build": runner.build()})
     meta_path.write_text(json.dumps(meta, indent=1) + "\n")
     path = report.Report(a.out).write()
     print(f"studies: done in {time.monotonic() - start:.0f} s; report: {path}")

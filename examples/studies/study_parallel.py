@@ -44,7 +44,8 @@ def run(ctx):
                     solve = sorted(log["events"].get("Solve", {}).items(), key=lambda e: -e[1])
                     for event, t in solve[:TOP_EVENTS]:
                         events.append({"scene": scene, "solver": solver, "refine": refine,
-                                       "ranks": ranks, "event": event, "time": t})
+                                       "ranks": ranks, "event": event, "time": t,
+                                       "commit": row["commit"]})
     ctx.write_csv(NAME, rows, COLUMNS, key=("scene", "solver"))
     ctx.write_csv("parallel_events", events, EVENT_COLUMNS, key=("scene", "solver"))
 

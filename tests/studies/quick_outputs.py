@@ -12,12 +12,13 @@ from pathlib import Path
 SOURCE = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(SOURCE / "examples" / "studies"))
 
-from context import number, read_csv  # noqa: E402
+from context import PROVENANCE, number, read_csv  # noqa: E402
+from runner import Runner  # noqa: E402
 import studies  # noqa: E402
 
 # study CSV -> rows the quick mode must produce, as (key columns -> values) sets.
 EXPECTED_ROWS = {
-    "iterations": 12,       # 4 scenes x (TR at refine 0, 1 + RMTR with 2 levels)
+    "iterations": 16,       # 4 scenes x (TR at refine 0, 1 + rmtr and the default on 2 levels)
     "work": 4,              # trampoline, drooping x (TR, RMTR)
     "projection": 2,        # lsq, reverse
     "condition": 4,         # 2 resolutions + 2 penalties
@@ -48,15 +49,21 @@ def failed_runs(name, rows):
                         for s, c, p in EXPECTED_FAILED_RUNS)]
 
 
-def check(out):
+def check(out, build):
+    if not build:
+        fail("mlshell --version names no commit")
     for name, count in EXPECTED_ROWS.items():
         path = out / f"{name}.csv"
         if not path.is_file():
             fail(f"{path} was not written")
         rows = read_csv(path)
-        columns = getattr(studies.STUDIES[name], "COLUMNS")
+        columns = getattr(studies.STUDIES[name], "COLUMNS") + [PROVENANCE]
         if not rows or list(rows[0].keys()) != columns:
             fail(f"{path}: header is not {columns}")
+        # Every row names the build that measured it: this one.
+        strangers = {r[PROVENANCE] for r in rows} - {build}
+        if strangers:
+            fail(f"{path}: rows measured by builds {sorted(strangers)}, not {build!r}")
         if len(rows) != count:
             fail(f"{path}: {len(rows)} rows, expected {count}")
         failed = failed_runs(name, rows)
@@ -116,7 +123,7 @@ def main(argv):
                            "--build", str(build), "--out", str(out)]).returncode
     if code != 0:
         fail(f"studies.py --quick exited with {code}")
-    check(out)
+    check(out, Runner(build, out).build())
     print("quick_outputs: every study wrote its CSV, plots and report section")
 
 

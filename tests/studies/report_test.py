@@ -332,6 +332,31 @@ class CsvMerge(unittest.TestCase):
             self.assertEqual(rows, {("b", "x"), ("a", "z")})  # by scene: all of a's rows go
 
 
+class Provenance(unittest.TestCase):
+    """Every row says which mlshell build measured it; rows from before keep theirs empty."""
+
+    def test_rows_carry_the_build_and_older_rows_are_kept_unrecorded(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = Path(d)
+            cols = ["scene", "solver", "wall_time"]
+            write(out, "t", [{"scene": "a", "solver": "x", "wall_time": 1}])  # no commit column
+            summary = {"status": "complete", "dofs": 363, "gradient_norm": 1e-9,
+                       "wall_time": 2.0, "build": {"commit": "abc1234"},
+                       "solver": {"iterations": 4, "reason": "CONVERGED_GATOL",
+                                  "converged": True}}
+            fields = solver_fields({"scene": "b", "refine": 1, "ranks": 2, "exit_code": 0,
+                                    "timed_out": False, "elapsed": 2.0, "summary": summary})
+            self.assertEqual(fields["commit"], "abc1234")
+            ctx = Context(runner=None, mode="full", out=out)
+            ctx.write_csv("t", [{**fields, "solver": "x"}], cols, key=("scene", "solver"))
+            rows = read_csv(out / "t.csv")
+            self.assertEqual(list(rows[0]), cols + ["commit"])
+            self.assertEqual({(r["scene"], r["commit"]) for r in rows},
+                             {("a", ""), ("b", "abc1234")})
+            text = report.Report(out).write().read_text()
+            self.assertIn("| t.csv | 2 | abc1234 (1), not recorded (1) |", text)
+
+
 class FailedRuns(unittest.TestCase):
     """A crash or a timeout must never pass for a solver's own outcome."""
 
