@@ -23,7 +23,7 @@ def iterations(rows, out):
     mlshell's default dashed), with the paper's."""
     if not rows:
         return None
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 4.4))
     for k, scene in enumerate(paper.SCENES):
         color = f"C{k}"
         tr = [(number(r["dofs"]), number(r["iterations"])) for r in rows
@@ -44,7 +44,7 @@ def iterations(rows, out):
     left.set(xlabel="dofs", ylabel="TR iterations", title="Table 3: single-level TR, dt = 1")
     right.set(xlabel="levels", ylabel="RMTR V-cycles", title="Table 4: RMTR, dt = 1")
     left.legend(fontsize=6)
-    right.legend(fontsize=6)
+    right.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1.0))  # beside the curves
     return _save(fig, out, "iterations.png")
 
 
