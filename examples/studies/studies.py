@@ -111,7 +111,9 @@ def main(argv):
     meta["runs"].append({"command": command, "studies": names, "elapsed": time.monotonic() - start,
                          "date": datetime.datetime.now().isoformat(timespec="seconds"),
                          "build": runner.build()})
-    meta_path.write_text(json.dumps(meta, indent=1) + "\n")
+    tmp = meta_path.with_suffix(".json.tmp")  # never a half-written meta.json
+    tmp.write_text(json.dumps(meta, indent=1) + "\n")
+    tmp.replace(meta_path)
     path = report.Report(a.out).write()
     print(f"studies: done in {time.monotonic() - start:.0f} s; report: {path}")
     return 0
