@@ -2,10 +2,7 @@
 import csv
 from pathlib import Path
 
-from runner import SOURCE, Runner
-
-# Every CSV's last column: the mlshell build (commit) that measured the row.
-PROVENANCE = "commit"
+from runner import PROVENANCE, SOURCE, Runner
 
 
 class Context:

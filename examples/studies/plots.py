@@ -7,6 +7,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import paper  # noqa: E402
 from context import number  # noqa: E402
+from solvers import DEFAULT_SOLVER  # noqa: E402
 
 MARKERS = "osD^v<>ph*"
 
@@ -33,7 +34,7 @@ def iterations(rows, out):
         ref = [(d, i) for d, i in zip(paper.DOFS, paper.TR_ITERATIONS[scene]) if i]
         left.loglog(*zip(*ref), MARKERS[k] + ":", color=color, alpha=0.5, mfc="none",
                     label=f"{scene} (paper)")
-        for solver, style in (("rmtr", "-"), ("rmtr-patch-dogleg", "--")):
+        for solver, style in (("rmtr", "-"), (DEFAULT_SOLVER, "--")):
             rm = [(number(r["levels"]), number(r["iterations"])) for r in rows
                   if r["scene"] == scene and r["solver"] == solver and r["converged"] == "1"]
             if rm:

@@ -17,6 +17,8 @@ SCENES = ("trampoline", "drooping", "reentrant_corner", "drape")
 # The re-entrant corner's cage has 91 faces (10×10 minus the cut), not the others' 16: refine 4
 # already gives ~70,000 dofs, above the paper's finest (51,483); finer ones are not run.
 MAX_REFINE = {"reentrant_corner": 4}
+# Every CSV's last column: the mlshell build (commit) that measured the row.
+PROVENANCE = "commit"
 # The denim presets a study compares: the default (coupling limited, ψ > 0) and Table 1 as printed.
 PRESETS = ("denim", "denim-table1")
 
@@ -188,7 +190,7 @@ def solver_fields(result):
     # run a copy of an earlier build than the checkout's.
     build = (s or {}).get("build", {}).get("commit", "")
     base = {"scene": result["scene"], "refine": result["refine"], "ranks": result["ranks"],
-            "commit": build}
+            PROVENANCE: build}
     crashed = not result.get("skipped") and not result["timed_out"] and \
         result["exit_code"] not in (0, 3)
     if not s or crashed:  # a summary a crashed run left behind is not its result

@@ -6,7 +6,7 @@ ST-CG smoothing after a full-multigrid start (rmtr-patch) on the trampoline, the
 converges on. Two copies of the 1-rank
 run started together measure what sharing the machine's memory bandwidth and caches costs one
 core: 2 × (1-rank wall) / (a shared copy's wall) is the most 2 ranks can gain on this machine."""
-from runner import solver_fields
+from runner import PROVENANCE, solver_fields
 from solvers import with_tolerance
 
 NAME = "parallel"
@@ -45,7 +45,7 @@ def run(ctx):
                     for event, t in solve[:TOP_EVENTS]:
                         events.append({"scene": scene, "solver": solver, "refine": refine,
                                        "ranks": ranks, "event": event, "time": t,
-                                       "commit": row["commit"]})
+                                       PROVENANCE: row[PROVENANCE]})
     ctx.write_csv(NAME, rows, COLUMNS, key=("scene", "solver"))
     ctx.write_csv("parallel_events", events, EVENT_COLUMNS, key=("scene", "solver"))
 

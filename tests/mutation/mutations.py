@@ -22,6 +22,13 @@ LONG = ("studies.quick", "cli.hard_cases", "cli.paper_scenes")
 
 # name, file, old text, new text, what it breaks, long tests to run as well
 MUTATIONS = [
+    ("studies-row-build-dropped", "examples/studies/runner.py",
+     '    build = (s or {}).get("build", {}).get("commit", "")', '    build = ""',
+     "the studies' rows do not name the mlshell build that measured them", ()),
+    ("studies-old-rows-dropped", "examples/studies/context.py",
+     "            if old and [c for c in old[0] if c != PROVENANCE] == columns[:-1]:",
+     "            if old and list(old[0]) == columns:",
+     "a CSV written before the build column loses its rows when a study adds its own", ()),
     ("trial-gradient-discarded", "solvers/local_trust_region.cpp",
      "  if (trial_gradient_) {  // f and ∇f at x + s are known already",
      "  if (false) {  // f and ∇f at x + s are known already",
