@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The paper's scenes are well posed: the drooping cloth (1,083 dofs) converges at dt = 1 with
-# RMTR on 2 ranks with the default denim, stays positive and reaches the state of 1 rank; with denim-table1 the run converges
+# RMTR on 2 ranks with the default denim, stays positive and ends as deep as on 1 rank (a step
+# of dt = 0.05, with one minimiser, in the same state); with denim-table1 the run converges
 # too but reports the fit's negative energy density. A problem whose round-off floor lies above
 # the tolerance stops as converged at the limiting accuracy on 1 and 2 ranks, with the same
 # state as a normal solve, and the same floor with a stated factor of 1 stays a failure. A
@@ -28,14 +29,31 @@ mpiexec --oversubscribe -n 2 "$MLSHELL" "$SRC/examples/drooping.yaml" -mlshell_s
 [[ $(field drooping "d['material']['negative_energy']") == 0 ]] || die "drooping: psi < 0"
 [[ $(field drooping "d['energy']['elastic'] > 0") == True ]] || die "drooping: elastic energy <= 0"
 
-echo "check: the drooping cloth reaches the same state on 1 rank (probes to 1e-6 relative)"
+echo "check: on 1 rank the drooping cloth at dt = 1 converges to a minimum as deep (energy to 1e-4)"
+# The hanging cloth has neighbouring minima (on one CPU 1 rank reached -0.5040507 J and 2 ranks
+# -0.5040491 J): which one a run settles in depends on the rounding of its sums, so at dt = 1
+# only the depth is compared, and the state below, where inertia leaves one minimiser.
 "$MLSHELL" "$SRC/examples/drooping.yaml" -mlshell_steps 1 -mlshell_output_dir drooping1 \
   >drooping1.log 2>&1 || die "drooping, 1 rank: $(tail -5 drooping1.log)"
-$PY - <<'PY' || die "drooping: 1 and 2 ranks differ"
+$PY - <<'PY' || die "drooping: 1 and 2 ranks end at different depths"
 import json
-a = json.load(open("drooping1/summary.json"))["probes"]
-b = json.load(open("drooping/summary.json"))["probes"]
+a, b = (json.load(open(f"{d}/summary.json")) for d in ("drooping1", "drooping"))
+assert a["solver"]["reason"].startswith("CONVERGED"), a["solver"]
+fa, fb = a["energy"]["total"], b["energy"]["total"]
+assert abs(fa - fb) <= 1e-4 * abs(fb), (fa, fb)
+PY
+
+echo "check: a step of dt = 0.05 of the drooping cloth reaches the same state on 1 and 2 ranks"
+for ranks in 1 2; do
+  mpiexec --oversubscribe -n $ranks "$MLSHELL" "$SRC/examples/drooping.yaml" -mlshell_steps 1 \
+    -mlshell_dt 0.05 -mlshell_output_dir short$ranks >short$ranks.log 2>&1 ||
+    die "drooping, dt = 0.05, $ranks rank(s): $(tail -5 short$ranks.log)"
+done
+$PY - <<'PY' || die "drooping, dt = 0.05: 1 and 2 ranks differ"
+import json
+a, b = (json.load(open(f"short{k}/summary.json"))["probes"] for k in (1, 2))
 scale = max(abs(x) for k in b for x in b[k]["displacement"])
+assert scale > 1e-2, scale  # the cloth has fallen: a state to compare
 for k in b:
     for x, y in zip(a[k]["displacement"], b[k]["displacement"]):
         assert abs(x - y) <= 1e-6 * scale, (k, a[k], b[k])
