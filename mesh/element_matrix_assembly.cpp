@@ -1,6 +1,8 @@
 // Element matrices straight into the CSR arrays (see element_matrix_assembly.hpp).
 #include "mlshell/element_matrix_assembly.hpp"
 
+#include <petsc/private/petscimpl.h>  // PetscObjectStateIncrease
+
 #include <algorithm>
 #include <memory>
 
@@ -99,30 +101,34 @@ PetscErrorCode give_arrays(Mat part, CsrArrays* arrays) {
 
 }  // namespace
 
-PetscErrorCode create_prefilled_block_matrix(MPI_Comm comm, PetscInt first_owned,
-                                             const std::vector<std::vector<int>>& columns,
-                                             const std::vector<PetscInt>& block_of_local, Mat* A) {
+namespace {
+
+/// The prefilled matrix of `columns` with bs × bs blocks (bs = 3: a Hessian's pattern; bs = 1:
+/// one scalar per block, the same pattern over points).
+PetscErrorCode create_prefilled(MPI_Comm comm, PetscInt first_owned,
+                                const std::vector<std::vector<int>>& columns, PetscInt bs,
+                                Mat* A) {
   PetscFunctionBeginUser;
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  const PetscInt num_owned = static_cast<PetscInt>(columns.size()), m = 3 * num_owned;
+  const PetscInt num_owned = static_cast<PetscInt>(columns.size()), m = bs * num_owned;
   const auto owned = [&](PetscInt b) { return b >= first_owned && b < first_owned + num_owned; };
-  // Scalar rows 3i..3i+2 of block row i share its block columns, each expanded to three;
-  // the diagonal part numbers its columns from the first owned one, the other part globally.
+  // Scalar rows bs·i … bs·i + bs − 1 of block row i share its block columns, each expanded to
+  // bs; the diagonal part numbers its columns from the first owned one, the other part globally.
   auto diag = std::make_unique<CsrArrays>(), off = std::make_unique<CsrArrays>();
   PetscInt nd = 0, no = 0;
   for (const auto& c : columns)
-    for (int b : c) (owned(b) ? nd : no) += 9;
+    for (int b : c) (owned(b) ? nd : no) += bs * bs;
   diag->i.reserve(m + 1), diag->j.reserve(nd), off->i.reserve(m + 1), off->j.reserve(no);
   diag->i.push_back(0), off->i.push_back(0);
   for (PetscInt r = 0; r < num_owned; ++r)
-    for (int c = 0; c < 3; ++c) {
+    for (PetscInt c = 0; c < bs; ++c) {
       for (int b : columns[r])
-        for (PetscInt k = 0; k < 3; ++k) {
+        for (PetscInt k = 0; k < bs; ++k) {
           if (owned(b))
-            diag->j.push_back(3 * (b - first_owned) + k);
+            diag->j.push_back(bs * (b - first_owned) + k);
           else
-            off->j.push_back(3 * static_cast<PetscInt>(b) + k);
+            off->j.push_back(bs * static_cast<PetscInt>(b) + k);
         }
       diag->i.push_back(static_cast<PetscInt>(diag->j.size()));
       off->i.push_back(static_cast<PetscInt>(off->j.size()));
@@ -142,8 +148,60 @@ PetscErrorCode create_prefilled_block_matrix(MPI_Comm comm, PetscInt first_owned
     PetscCall(give_arrays(parts[0], diag.release()));
     PetscCall(give_arrays(parts[1], off.release()));
   }
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode create_prefilled_block_matrix(MPI_Comm comm, PetscInt first_owned,
+                                             const std::vector<std::vector<int>>& columns,
+                                             const std::vector<PetscInt>& block_of_local, Mat* A) {
+  PetscFunctionBeginUser;
+  PetscCall(create_prefilled(comm, first_owned, columns, 3, A));
   PetscCall(MatSetBlockSize(*A, 3));
   PetscCall(attach_block_columns(*A, block_of_local));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode create_prefilled_point_matrix(MPI_Comm comm, PetscInt first_owned,
+                                             const std::vector<std::vector<int>>& columns,
+                                             Mat* A) {
+  return create_prefilled(comm, first_owned, columns, 1, A);
+}
+
+PetscErrorCode add_point_matrix(Mat A, Mat M) {
+  PetscFunctionBeginUser;
+  PetscBool mpi;
+  PetscCall(PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &mpi));
+  Mat a_parts[2], m_parts[2];
+  PetscCall(parts_of(A, mpi, a_parts));
+  PetscCall(parts_of(M, mpi, m_parts));
+  for (int p = 0; p < 2; ++p) {
+    if (!a_parts[p]) continue;
+    const PetscInt *ia, *ja, *im, *jm;
+    PetscCall(MatSeqAIJGetCSRAndMemType(a_parts[p], &ia, &ja, nullptr, nullptr));
+    PetscCall(MatSeqAIJGetCSRAndMemType(m_parts[p], &im, &jm, nullptr, nullptr));
+    PetscInt rows;
+    PetscCall(MatGetLocalSize(m_parts[p], &rows, nullptr));
+    // The same pattern: block k of A's block row r is entry k of M's row r (columns in the
+    // same order, the off-diagonal parts' compressed columns included).
+    for (PetscInt r = 0; r < rows; ++r)
+      PetscCheck(ia[3 * r + 1] - ia[3 * r] == 3 * (im[r + 1] - im[r]), PETSC_COMM_SELF,
+                 PETSC_ERR_ARG_INCOMP,
+                 "add_point_matrix: row %" PetscInt_FMT " of the Hessian has another pattern", r);
+    const PetscScalar* m;
+    PetscScalar* a;
+    PetscCall(MatSeqAIJGetArrayRead(m_parts[p], &m));
+    PetscCall(MatSeqAIJGetArray(a_parts[p], &a));
+    for (PetscInt r = 0; r < rows; ++r)
+      for (PetscInt c = 0; c < 3; ++c) {
+        PetscScalar* row = a + ia[3 * r + c] + c;  // the (c, c) entry of the row's first block
+        for (PetscInt k = im[r]; k < im[r + 1]; ++k) row[3 * (k - im[r])] += m[k];
+      }
+    PetscCall(MatSeqAIJRestoreArray(a_parts[p], &a));
+    PetscCall(MatSeqAIJRestoreArrayRead(m_parts[p], &m));
+  }
+  PetscCall(PetscObjectStateIncrease((PetscObject)A));
   PetscFunctionReturn(0);
 }
 

@@ -240,6 +240,19 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ParallelLayout::create_point_matrix(Mat* M) const {
+  PetscFunctionBeginUser;
+  PetscCall(create_prefilled_point_matrix(comm_, first_owned_, block_pattern({})->columns, M));
+  const auto& blocks = vertex_patches()->blocks;  // PETSc point index of each local point
+  ISLocalToGlobalMapping l2g;
+  PetscCall(ISLocalToGlobalMappingCreate(comm_, 1, static_cast<PetscInt>(blocks.size()),
+                                         blocks.data(), PETSC_COPY_VALUES, &l2g));
+  PetscCall(MatSetLocalToGlobalMapping(*M, l2g, l2g));
+  PetscCall(ISLocalToGlobalMappingDestroy(&l2g));
+  PetscCall(MatSetOption(*M, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
 // Neighbours across the faces around a point: the corners of every face (ghost faces
 // included) that has the point as a corner.
 std::shared_ptr<const VertexPatches> ParallelLayout::vertex_patches() const {

@@ -35,6 +35,18 @@ PetscErrorCode create_prefilled_block_matrix(MPI_Comm comm, PetscInt first_owned
                                              const std::vector<std::vector<int>>& columns,
                                              const std::vector<PetscInt>& block_of_local, Mat* A);
 
+/// The same pattern over points: a scalar MATAIJ matrix (block size 1) with one entry for each
+/// block of create_prefilled_block_matrix's, prefilled with zeros and assembled, for operators
+/// that act alike on x, y and z (the mass matrix M, whose Hessian block is M ⊗ I₃: a ninth of
+/// the storage).
+PetscErrorCode create_prefilled_point_matrix(MPI_Comm comm, PetscInt first_owned,
+                                             const std::vector<std::vector<int>>& columns, Mat* A);
+
+/// A += M ⊗ I₃: M a point matrix of A's pattern (create_prefilled_point_matrix), A a prefilled
+/// block matrix or a duplicate of one, assembled. Straight into the CSR arrays: each entry of M
+/// goes to the three diagonal entries of A's block in the same position.
+PetscErrorCode add_point_matrix(Mat A, Mat M);
+
 /// What create_prefilled_block_matrix attaches, for a matrix that has that pattern already (a
 /// duplicate of a prefilled one: MatDuplicate does not carry it over).
 PetscErrorCode attach_block_columns(Mat A, const std::vector<PetscInt>& block_of_local);

@@ -54,6 +54,10 @@ class ParallelLayout {
   /// rigid-body modes as near-nullspace (for algebraic multigrid) and the vertex patches (for
   /// PC "vpatch").
   PetscErrorCode create_matrix(Mat* A, const std::vector<std::array<int, 2>>& extra = {}) const;
+  /// A scalar AIJ matrix over the points with the element-stencil pattern of create_matrix (one
+  /// entry per block, element_matrix_assembly.hpp), local-to-global mapping set: for M in
+  /// H += M ⊗ I₃ (add_point_matrix).
+  PetscErrorCode create_point_matrix(Mat* M) const;
   /// The vertex patches of the owned points (vertex_patches.hpp); built on first use.
   std::shared_ptr<const VertexPatches> vertex_patches() const;
   /// Reference coordinates of the owned points (block size 3), e.g. for rigid-body modes.

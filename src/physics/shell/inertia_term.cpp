@@ -2,6 +2,8 @@
 // ρ/(2 dt²) ∫ |u − û|² dA with û = u_n + dt v_n; its minimiser satisfies the Euler step.
 #include "mlshell/effects.hpp"
 
+#include "mlshell/element_matrix_assembly.hpp"
+
 namespace mlshell {
 
 InertiaTerm::InertiaTerm(const SubdivisionDiscretization& disc, const ParallelLayout& layout,
@@ -17,7 +19,7 @@ InertiaTerm::InertiaTerm(const SubdivisionDiscretization& disc, const ParallelLa
       e.area.push_back(disc.quadrature_weight(g) * reference_area(b, g, disc.mesh().points));
     elements_.push_back(std::move(e));
   }
-  PetscCallAbort(layout.comm(), layout.create_matrix(&mass_));
+  PetscCallAbort(layout.comm(), layout.create_point_matrix(&mass_));
   PetscCallAbort(layout.comm(), assemble_mass(mass_));
 }
 
@@ -25,10 +27,10 @@ InertiaTerm::~InertiaTerm() { MatDestroy(&mass_); }
 
 PetscErrorCode InertiaTerm::assemble_mass(Mat M) const {
   PetscFunctionBeginUser;
-  std::vector<double> Ms, He;
+  std::vector<double> Ms;
   for (const Element& e : elements_) {
     const int n = e.basis.size;
-    // The scalar mass Σ_g m_g N Nᵀ (its upper triangle), then one copy per component.
+    // The scalar mass Σ_g m_g N Nᵀ: the Hessian's 3 × 3 blocks are its entries times I₃.
     Ms.assign(n * n, 0.0);
     for (size_t g = 0; g < e.area.size(); ++g) {
       const double* N = e.basis.slot(static_cast<int>(g), kValue);
@@ -38,12 +40,9 @@ PetscErrorCode InertiaTerm::assemble_mass(Mat M) const {
         for (int j = i; j < n; ++j) Ms[i * n + j] += mi * N[j];
       }
     }
-    He.assign(9 * n * n, 0.0);
     for (int i = 0; i < n; ++i)
-      for (int j = i; j < n; ++j)
-        for (int c = 0; c < 3; ++c)
-          He[(3 * i + c) * 3 * n + 3 * j + c] = He[(3 * j + c) * 3 * n + 3 * i + c] = Ms[i * n + j];
-    PetscCall(add_local_hessian(M, e.nodes, He.data()));
+      for (int j = 0; j < i; ++j) Ms[i * n + j] = Ms[j * n + i];
+    PetscCall(MatSetValuesLocal(M, n, e.nodes.data(), n, e.nodes.data(), Ms.data(), ADD_VALUES));
   }
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
@@ -52,8 +51,9 @@ PetscErrorCode InertiaTerm::assemble_mass(Mat M) const {
 
 PetscErrorCode InertiaTerm::add_constant_hessian(Mat hess) const {
   PetscFunctionBeginUser;
-  // Same element-stencil pattern as every level Hessian (ParallelLayout::create_matrix).
-  PetscCall(MatAXPY(hess, 1.0, mass_, SAME_NONZERO_PATTERN));
+  // ρ/dt² M ⊗ I₃ into the Hessian, whose pattern the point matrix shares
+  // (ParallelLayout::create_matrix and create_point_matrix).
+  PetscCall(add_point_matrix(hess, mass_));
   PetscFunctionReturn(0);
 }
 
