@@ -39,7 +39,10 @@ class ScalingMemoryGuard(unittest.TestCase):
         # TR peaked at 3,621 MiB per rank at 201,243 dofs: 6× on 2 ranks is 42 GiB.
         why = too_big("tr", "3621", 2, 22000.0)
         self.assertIsNotNone(why)
-        self.assertIn("predicted 42 GiB on 2 ranks > 21 GiB available", why)
+        self.assertIn("predicted 42 GiB on 2 ranks > 18 GiB, 85% of the 21 GiB available", why)
+        # bnls peaked at 2,585 MiB at 201,243 dofs: 4.5× on 2 ranks is 22.7 GiB, within the
+        # 23 GiB available but not within the headroom.
+        self.assertIsNotNone(too_big("bnls-mumps", "2585", 2, 23500.0))
         # The patch smoother (2,076 MiB, grows ~4×) fits; so does anything with no history.
         self.assertIsNone(too_big("rmtr-patch", "2076", 2, 22000.0))
         self.assertIsNone(too_big("tr", "", 2, 22000.0))
