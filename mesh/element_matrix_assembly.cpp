@@ -183,12 +183,15 @@ PetscErrorCode add_point_matrix(Mat A, Mat M) {
     PetscCall(MatSeqAIJGetCSRAndMemType(m_parts[p], &im, &jm, nullptr, nullptr));
     PetscInt rows;
     PetscCall(MatGetLocalSize(m_parts[p], &rows, nullptr));
-    // The same pattern: block k of A's block row r is entry k of M's row r (columns in the
-    // same order, the off-diagonal parts' compressed columns included).
-    for (PetscInt r = 0; r < rows; ++r)
-      PetscCheck(ia[3 * r + 1] - ia[3 * r] == 3 * (im[r + 1] - im[r]), PETSC_COMM_SELF,
-                 PETSC_ERR_ARG_INCOMP,
+    // The same pattern: block k of A's block row r is entry k of M's row r, its first column
+    // three times M's (the off-diagonal parts' compressed columns included).
+    for (PetscInt r = 0; r < rows; ++r) {
+      bool same = ia[3 * r + 1] - ia[3 * r] == 3 * (im[r + 1] - im[r]);
+      for (PetscInt k = im[r]; same && k < im[r + 1]; ++k)
+        same = ja[ia[3 * r] + 3 * (k - im[r])] == 3 * jm[k];
+      PetscCheck(same, PETSC_COMM_SELF, PETSC_ERR_ARG_INCOMP,
                  "add_point_matrix: row %" PetscInt_FMT " of the Hessian has another pattern", r);
+    }
     const PetscScalar* m;
     PetscScalar* a;
     PetscCall(MatSeqAIJGetArrayRead(m_parts[p], &m));
