@@ -194,10 +194,28 @@ std::shared_ptr<const ParallelLayout::BlockPattern> ParallelLayout::block_patter
     if (owned_index[a] >= 0) coupled[owned_index[a]].push_back(petsc_of_natural_[b]);
     if (owned_index[b] >= 0) coupled[owned_index[b]].push_back(petsc_of_natural_[a]);
   }
-  for (auto& c : coupled) {
-    std::sort(c.begin(), c.end());
-    c.erase(std::unique(c.begin(), c.end()), c.end());
+  // Ghost rows: the stencils of the rank's own elements and the extra pairs with a ghost end.
+  const int num_local = static_cast<int>(local_points_.size());
+  auto& ghost = p->ghost_columns;
+  ghost.assign(num_local - num_owned_, {});
+  for (int f : local_elements_) {
+    const std::vector<int> stencil = disc_.stencil(f);
+    for (int v : stencil)
+      if (local_of_natural_[v] >= num_owned_)
+        for (int w : stencil) ghost[local_of_natural_[v] - num_owned_].push_back(petsc_of_natural_[w]);
   }
+  for (const auto& [a, b] : extra)
+    if (local_of_natural_[a] >= 0 && local_of_natural_[b] >= 0) {
+      if (local_of_natural_[a] >= num_owned_)
+        ghost[local_of_natural_[a] - num_owned_].push_back(petsc_of_natural_[b]);
+      if (local_of_natural_[b] >= num_owned_)
+        ghost[local_of_natural_[b] - num_owned_].push_back(petsc_of_natural_[a]);
+    }
+  for (auto* rows : {&coupled, &ghost})
+    for (auto& c : *rows) {
+      std::sort(c.begin(), c.end());
+      c.erase(std::unique(c.begin(), c.end()), c.end());
+    }
   pattern_ = std::move(p);
   return pattern_;
 }
@@ -212,11 +230,11 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
     // (MAT_SHARE_NONZERO_PATTERN or not), which is still cheaper than building them.
     PetscCall(MatDuplicate(first_matrix_, MAT_SHARE_NONZERO_PATTERN, A));
     PetscCall(MatZeroEntries(*A));
-    PetscCall(attach_block_columns(*A, vertex_patches()->blocks));
+    PetscCall(attach_block_columns(*A, vertex_patches()->blocks, pattern->ghost_columns));
   } else {
     // Every element block is in the pattern from the start: add_element_matrix's fast path.
     PetscCall(create_prefilled_block_matrix(comm_, first_owned_, pattern->columns,
-                                            vertex_patches()->blocks, A));
+                                            vertex_patches()->blocks, pattern->ghost_columns, A));
   }
   PetscCall(MatSetLocalToGlobalMapping(*A, l2g_, l2g_));
   PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));

@@ -8,8 +8,10 @@
 // they are made (every element block is prefilled with zeros and assembled once), so a block's
 // position can be found once per block instead of once per value: block columns are local
 // point indices, owned points are the diagonal part's block columns and ghost points a block of
-// the off-diagonal part's compressed columns (`column_of_local`). Rows this rank does not own
-// still go through MatSetValuesBlockedLocal (PETSc's stash sends them at assembly).
+// the off-diagonal part's compressed columns (`column_of_local`). Rows of ghost points (owned by
+// other ranks) are summed here in blocks of their own fixed pattern (BlockPattern::
+// ghost_columns) and sent at MatAssemblyBegin, each block to its place in the owner's CSR arrays
+// found once (a PetscSF gather), instead of entry by entry through PETSc's stash.
 //
 // This plays the part of PETSc's COO assembly (MatSetPreallocationCOO / MatSetValuesCOO)
 // without its per-entry index arrays: element entries outnumber the matrix's nonzeros about
@@ -31,9 +33,13 @@ namespace mlshell {
 /// MatCreateMPIAIJWithSplitArrays) instead of inserting the zeros row by row with MatSetValues
 /// (the whole set-up at 51,483 dofs on 1 rank: 0.52 → 0.47 s). The matrix's sequential parts own
 /// the arrays (composed containers, freed with them; PETSc 3.18 copies them on MatDuplicate).
+/// `ghost_columns`: for each ghost point (local index − owned points), the sorted global block
+/// columns this rank adds to its row (on one rank: none).
 PetscErrorCode create_prefilled_block_matrix(MPI_Comm comm, PetscInt first_owned,
                                              const std::vector<std::vector<int>>& columns,
-                                             const std::vector<PetscInt>& block_of_local, Mat* A);
+                                             const std::vector<PetscInt>& block_of_local,
+                                             const std::vector<std::vector<int>>& ghost_columns,
+                                             Mat* A);
 
 /// The same pattern over points: a scalar MATAIJ matrix (block size 1) with one entry for each
 /// block of create_prefilled_block_matrix's, prefilled with zeros and assembled, for operators
@@ -48,12 +54,16 @@ PetscErrorCode create_prefilled_point_matrix(MPI_Comm comm, PetscInt first_owned
 PetscErrorCode add_point_matrix(Mat A, Mat M);
 
 /// What create_prefilled_block_matrix attaches, for a matrix that has that pattern already (a
-/// duplicate of a prefilled one: MatDuplicate does not carry it over).
-PetscErrorCode attach_block_columns(Mat A, const std::vector<PetscInt>& block_of_local);
+/// duplicate of a prefilled one: MatDuplicate does not carry it over). Collective. On more than
+/// one rank it replaces the matrix's MatAssemblyBegin and MatZeroEntries by ones that also send
+/// (and zero) the ghost rows' blocks, so the matrix assembles like any other.
+PetscErrorCode attach_block_columns(Mat A, const std::vector<PetscInt>& block_of_local,
+                                    const std::vector<std::vector<int>>& ghost_columns);
 
 /// A += the dense 3n × 3n row-major element matrix on local block indices `nodes`. Uses the
-/// CSR arrays when `A` was made by create_prefilled_block_matrix, else MatSetValuesBlockedLocal.
-/// The caller assembles A afterwards (MAT_FINAL_ASSEMBLY) as with MatSetValues.
+/// CSR arrays (and the ghost rows) when `A` was made by create_prefilled_block_matrix, else
+/// MatSetValuesBlockedLocal. The caller assembles A afterwards (MAT_FINAL_ASSEMBLY) as with
+/// MatSetValues.
 PetscErrorCode add_element_matrix(Mat A, PetscInt n, const PetscInt* nodes, const double* values);
 
 }  // namespace mlshell

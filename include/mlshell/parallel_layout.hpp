@@ -87,6 +87,10 @@ class ParallelLayout {
   struct BlockPattern {
     std::vector<std::array<int, 2>> extra;
     std::vector<std::vector<int>> columns;
+    /// For each ghost point (local index − owned points), the sorted global block columns its
+    /// row gets from this rank's own elements and `extra` pairs: what add_element_matrix
+    /// gathers here and sends to the row's owner at assembly.
+    std::vector<std::vector<int>> ghost_columns;
   };
   mutable std::shared_ptr<const BlockPattern> pattern_;
   /// The first matrix made with the current pattern (a reference: it may outlive its maker);

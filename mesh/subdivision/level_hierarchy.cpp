@@ -1,6 +1,8 @@
 // Levels with inherited partitions and their transfer operators (see level_hierarchy.hpp).
 #include "mlshell/subdivision/level_hierarchy.hpp"
 
+#include "mlshell/log_events.hpp"
+
 #include <map>
 #include <stdexcept>
 
@@ -37,7 +39,11 @@ LevelHierarchy::LevelHierarchy(MPI_Comm comm, const SubdivisionHierarchy& sub, i
   // Finest first: METIS there, inherited owners below.
   for (int l = top; l >= coarsest; --l) {
     Level& level = levels_[l - coarsest];
-    level.disc = std::make_unique<SubdivisionDiscretization>(sub.level(l), gauss);
+    {
+      const LogEventScope event("Setup:basis");
+      level.disc = std::make_unique<SubdivisionDiscretization>(sub.level(l), gauss);
+    }
+    const LogEventScope event("Setup:layout");
     if (l == top) {
       level.layout = std::make_unique<ParallelLayout>(comm, *level.disc);
     } else {
@@ -48,6 +54,7 @@ LevelHierarchy::LevelHierarchy(MPI_Comm comm, const SubdivisionHierarchy& sub, i
                          finer.layout->face_owners()));
     }
   }
+  const LogEventScope event("Setup:transfers");
   transfers_.resize(levels_.size() - 1);
   for (int l = 0; l + 1 < num_levels(); ++l) {
     Transfer& t = transfers_[l];

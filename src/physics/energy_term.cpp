@@ -1,33 +1,15 @@
-// Shared pieces of all energy terms: log events, local assembly.
+// Shared pieces of all energy terms: their log events, local assembly.
 #include "mlshell/energy_term.hpp"
 
 #include "mlshell/element_matrix_assembly.hpp"
+#include "mlshell/log_events.hpp"
 
-#include <map>
 #include <stdexcept>
 
 namespace mlshell {
 
-namespace {
-
-/// All of mlshell's log events are registered here, one per effect name, so `-log_view` shows
-/// what each effect costs.
-PetscLogEvent effect_log_event(const std::string& name) {
-  static std::map<std::string, PetscLogEvent> events;
-  static PetscClassId classid = 0;
-  if (!classid) PetscClassIdRegister("mlshell", &classid);
-  auto it = events.find(name);
-  if (it != events.end()) return it->second;
-  PetscLogEvent e;
-  PetscLogEventRegister(("Effect:" + name).c_str(), classid, &e);
-  events[name] = e;
-  return e;
-}
-
-}  // namespace
-
 EnergyTerm::EnergyTerm(std::string name)
-    : name_(std::move(name)), event_(effect_log_event(name_)) {}
+    : name_(std::move(name)), event_(mlshell::log_event("Effect:" + name_)) {}
 
 std::vector<PetscInt> to_local_nodes(const ParallelLayout& layout, const int* nodes, int n) {
   std::vector<PetscInt> local(n);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mlshell/effects.hpp"
+#include "mlshell/log_events.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/subdivision/level_hierarchy.hpp"
 #include "mlshell/triangle/triangle_effect_builder.hpp"
@@ -130,9 +131,11 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   // Frames (XDMF, OBJ) sample the surface with one matrix, each rank its slice of the samples.
   const auto& formats = scene_.output.formats;
   if (std::find(formats.begin(), formats.end(), "xdmf") != formats.end() ||
-      std::find(formats.begin(), formats.end(), "obj") != formats.end())
+      std::find(formats.begin(), formats.end(), "obj") != formats.end()) {
+    const LogEventScope event("Setup:sampling");
     output_->sampling = std::make_unique<DistributedSampling>(
         *disc_->sampling(scene_.output.samples_for(scene_.geometry.refine)), *layout_);
+  }
   if (rank_ == 0) {
     fs::create_directories(output_->dir);
     // A summary left by an earlier run must not pass for this run's result.
@@ -142,6 +145,7 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
 
 void Simulation::setup_subdivision() {
   try {
+    const LogEventScope event("Setup:subdivision");
     hierarchy_ =
         std::make_unique<SubdivisionHierarchy>(build_cage(scene_.geometry), scene_.geometry.refine);
   } catch (const MeshError& e) {
@@ -157,7 +161,10 @@ void Simulation::setup_subdivision() {
   const int coarsest = step_solver_type() == "rmtr" ? 0 : finest;
   auto levels =
       std::make_unique<LevelHierarchy>(comm_, *hierarchy_, coarsest, options_.gauss_points);
-  multilevel_ = std::make_unique<MultilevelProblem>(scene_, *levels, frame_);
+  {
+    const LogEventScope event("Setup:problems");
+    multilevel_ = std::make_unique<MultilevelProblem>(scene_, *levels, frame_);
+  }
   const SubdivisionDiscretization& disc = levels->discretization(levels->finest());
   for (const auto& p : scene_.probes) {
     try {
@@ -293,6 +300,7 @@ PetscErrorCode Simulation::run(int* status) {
   }
   {
     const LogStageScope setup(stage_setup_);
+    const LogEventScope event("Setup:solver");
     solver_ = std::make_unique<StepSolver>(*problem_, multilevel_.get());
     if (scene_.time.quasistatic()) {
       const EnergyTerm* proximal = nullptr;

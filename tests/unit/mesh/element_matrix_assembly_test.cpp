@@ -1,12 +1,14 @@
 // Element matrices written straight into the CSR arrays (element_matrix_assembly.hpp) give the
-// matrix MatSetValuesBlockedLocal gives, on one rank and on two (rows of other ranks, ghost
-// columns), and a block outside the pattern is an error, not a silent drop.
+// matrix MatSetValuesBlockedLocal gives, on one rank and on two (rows of other ranks, sent as
+// ghost-row blocks or, outside their pattern, through PETSc's stash; ghost columns), and a block
+// outside the pattern is an error, not a silent drop.
 #include "mlshell/element_matrix_assembly.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "mlshell/vertex_patches.hpp"
 #include "physics_fixtures.hpp"
 
 using namespace mlshell;
@@ -67,9 +69,17 @@ Mat plain_matrix(const TestProblem& tp) {
 /// arrays, `reference` a plain matrix summed by MatSetValuesBlockedLocal, both twice (the second
 /// sum lands on the first: the arrays are added to, not overwritten; and the second assembly
 /// reuses the first's communication).
-double relative_matrix_difference(const TestProblem& tp, int* touching_ghosts) {
+/// With `without_ghost_pattern`, the ghost rows have no pattern of their own: every block of
+/// another rank's row goes through PETSc's stash.
+double relative_matrix_difference(const TestProblem& tp, int* touching_ghosts,
+                                  bool without_ghost_pattern = false) {
   Mat direct, reference = plain_matrix(tp);
   tp.layout->create_matrix(&direct);
+  if (without_ghost_pattern) {
+    const auto& blocks = tp.layout->vertex_patches()->blocks;
+    const std::vector<std::vector<int>> none(blocks.size() - tp.layout->num_owned_points());
+    EXPECT_EQ(attach_block_columns(direct, blocks, none), 0);
+  }
   for (int pass = 0; pass < 2; ++pass)
     *touching_ghosts = add_random_elements(tp, direct, reference);
   PetscReal norm, diff;
@@ -138,6 +148,18 @@ TEST(MpiElementMatrixAssembly, MatchesMatSetValuesWithRowsOfOtherRanks) {
   TestProblem tp("all", PETSC_COMM_WORLD);
   int touching_ghosts, total;
   const double difference = relative_matrix_difference(tp, &touching_ghosts);
+  MPI_Allreduce(&touching_ghosts, &total, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_GT(total, 0) << "no element touches another rank's points: the test checks nothing";
+  EXPECT_LT(difference, 1e-14);
+}
+
+TEST(MpiElementMatrixAssembly, GhostRowBlocksOutsideTheirPatternGoThroughTheStash) {
+  int size;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  ASSERT_GE(size, 2) << "run under mpiexec -n 2";
+  TestProblem tp("all", PETSC_COMM_WORLD);
+  int touching_ghosts, total;
+  const double difference = relative_matrix_difference(tp, &touching_ghosts, true);
   MPI_Allreduce(&touching_ghosts, &total, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
   EXPECT_GT(total, 0) << "no element touches another rank's points: the test checks nothing";
   EXPECT_LT(difference, 1e-14);
