@@ -2,39 +2,41 @@
 #include "mlshell/distributed_sampling.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 namespace mlshell {
 
-namespace {
-
-/// [begin, end) of this rank's share of n items split into contiguous slices (PETSc's split).
-void slice_of(MPI_Comm comm, PetscInt n, PetscInt* begin, PetscInt* end) {
-  PetscInt local = PETSC_DECIDE;
-  PetscCallAbort(comm, PetscSplitOwnership(comm, &local, &n));
-  PetscInt last;
-  MPI_Scan(&local, &last, 1, MPIU_INT, MPI_SUM, comm);
-  *begin = last - local;
-  *end = last;
-}
-
-}  // namespace
-
-DistributedSampling::DistributedSampling(const SurfaceSampling& sampling,
+DistributedSampling::DistributedSampling(const SurfaceSampling& part,
                                          const ParallelLayout& layout)
-    : comm_(layout.comm()), cell_size_(sampling.cell_size()), num_cells_(sampling.num_cells()) {
-  PetscInt first, last;
-  slice_of(comm_, static_cast<PetscInt>(sampling.num_points()), &first, &last);
-  const PetscInt rows = last - first, owned = layout.num_owned_points();
-  const auto& offsets = sampling.offsets();
-  const auto& nodes = sampling.nodes();
-  const auto& w = sampling.weights();
+    : comm_(layout.comm()), cell_size_(part.cell_size()), num_cells_(part.place().total_cells) {
+  // The parts must follow each other in rank order and cover the whole.
+  const SurfaceSampling::Place& place = part.place();
+  const std::int64_t mine[2] = {part.num_points(), part.num_cells()};
+  std::int64_t before[2] = {0, 0};
+  MPI_Exscan(mine, before, 2, MPI_INT64_T, MPI_SUM, comm_);
+  int rank;
+  MPI_Comm_rank(comm_, &rank);
+  if (rank == 0) before[0] = before[1] = 0;  // MPI_Exscan leaves rank 0's undefined
+  std::int64_t total[2];
+  MPI_Allreduce(mine, total, 2, MPI_INT64_T, MPI_SUM, comm_);
+  int ok = before[0] == place.first_point && before[1] == place.first_cell &&
+           total[0] == place.total_points && total[1] == place.total_cells;
+  MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_LAND, comm_);
+  if (!ok)
+    throw std::invalid_argument(
+        "DistributedSampling: the ranks' sampling parts do not follow each other in rank order");
+  const PetscInt rows = static_cast<PetscInt>(part.num_points()),
+                 owned = layout.num_owned_points();
+  const auto& offsets = part.offsets();
+  const auto& nodes = part.nodes();
+  const auto& w = part.weights();
   // This rank's rows of W as CSR (columns sorted, repeated nodes merged), handed over whole.
   std::vector<PetscInt> ia(rows + 1, 0), ja;
   std::vector<PetscScalar> va;
   std::vector<std::pair<PetscInt, double>> row;
-  for (PetscInt s = first; s < last; ++s) {
+  for (PetscInt s = 0; s < rows; ++s) {
     row.clear();
     for (std::int64_t k = offsets[s]; k < offsets[s + 1]; ++k)
       row.emplace_back(layout.petsc_of(nodes[k]), w[k]);
@@ -47,7 +49,7 @@ DistributedSampling::DistributedSampling(const SurfaceSampling& sampling,
       ja.push_back(row[k].first);
       va.push_back(row[k].second);
     }
-    ia[s - first + 1] = static_cast<PetscInt>(ja.size());
+    ia[s + 1] = static_cast<PetscInt>(ja.size());
   }
   PetscCallAbort(comm_, MatCreate(comm_, &weights_));
   PetscCallAbort(comm_, MatSetSizes(weights_, rows, owned, PETSC_DETERMINE, PETSC_DETERMINE));
@@ -62,13 +64,9 @@ DistributedSampling::DistributedSampling(const SurfaceSampling& sampling,
   PetscCallAbort(comm_, VecSetType(reference_, VECSTANDARD));
   PetscScalar* x;
   PetscCallAbort(comm_, VecGetArray(reference_, &x));
-  std::copy(sampling.reference().begin() + 3 * first, sampling.reference().begin() + 3 * last, x);
+  std::copy(part.reference().begin(), part.reference().end(), x);
   PetscCallAbort(comm_, VecRestoreArray(reference_, &x));
-
-  PetscInt cell_first, cell_last;
-  slice_of(comm_, static_cast<PetscInt>(sampling.num_cells()), &cell_first, &cell_last);
-  cells_.assign(sampling.cells().begin() + cell_size_ * cell_first,
-                sampling.cells().begin() + cell_size_ * cell_last);
+  cells_.assign(part.cells().begin(), part.cells().end());
 }
 
 DistributedSampling::~DistributedSampling() {

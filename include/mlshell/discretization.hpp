@@ -36,13 +36,25 @@ struct SurfaceSample {
 /// [offsets[s], offsets[s + 1]) of `nodes` (natural point indices) and `weights`. Being linear,
 /// it is also a matrix, which the parallel frame writer applies to distributed displacements
 /// (DistributedSampling).
+/// Where a sampling lies in the whole it may be a part of (Discretization::sampling_part): its
+/// points are points first_point, … of the whole's total_points, its cells likewise, and its
+/// cells hold the whole's point indices. A whole sampling: 0 and its own counts (−1 here).
+struct SamplingPlace {
+  std::int64_t first_point = 0, total_points = -1, first_cell = 0, total_cells = -1;
+};
+
 class SurfaceSampling {
  public:
+  using Place = SamplingPlace;
   /// reference: 3 coordinates per sample; offsets: one more than samples, from 0; cells:
   /// cell_size sample indices each. Throws std::invalid_argument on inconsistent sizes.
   SurfaceSampling(std::vector<double> reference, std::vector<std::int64_t> offsets,
                   std::vector<int> nodes, std::vector<double> weights,
-                  std::vector<std::int64_t> cells, int cell_size);
+                  std::vector<std::int64_t> cells, int cell_size, Place place = {});
+  /// Slice i of n of this whole sampling: contiguous ranges of its points and of its cells,
+  /// split as PetscSplitOwnership splits (the first n mod size slices one longer).
+  std::unique_ptr<SurfaceSampling> slice(int i, int n) const;
+  const Place& place() const { return place_; }
   /// The deformed surface for natural-order displacements `u` (3 per point; empty: the
   /// reference surface).
   SurfaceSample sample(const std::vector<double>& u) const;
@@ -62,7 +74,11 @@ class SurfaceSampling {
   std::vector<double> weights_;
   std::vector<std::int64_t> cells_;
   int cell_size_;
+  Place place_;
 };
+
+/// [first, last) of slice i of n over `count` items: PetscSplitOwnership's split.
+std::pair<std::int64_t, std::int64_t> slice_range(std::int64_t count, int i, int n);
 
 class Discretization {
  public:
@@ -91,6 +107,12 @@ class Discretization {
   /// Sampling of the surface for output, `samples` per element edge (ignored by kinds whose
   /// elements are flat).
   virtual std::unique_ptr<SurfaceSampling> sampling(int samples) const = 0;
+  /// Part i of n of a sampling of the surface, what rank i of n writes of each frame
+  /// (DistributedSampling): the same points and cells as sampling(samples) has, in the same
+  /// order, cut into contiguous parts. Kinds that can sample a part alone override it.
+  virtual std::unique_ptr<SurfaceSampling> sampling_part(int samples, int i, int n) const {
+    return sampling(samples)->slice(i, n);
+  }
 };
 
 /// 64-bit fingerprint of a discretization (point count and reference coordinates), for

@@ -1,9 +1,10 @@
 // A SurfaceSampling applied to distributed displacements, for writing frames in parallel: the
 // sample displacements are W u, with W the sampling's weights as a PETSc matrix (MAIJ over the
-// three components) whose rows are the samples in natural order, split into contiguous slices
-// over the ranks. Each rank then holds, and writes to the HDF5 file, its own slice of the points
-// and cells (XdmfSeries::add_frame with a FrameData): nothing is gathered to rank 0, and the
-// datasets are the ones a serial run writes.
+// three components) whose rows are the samples in natural order, split into contiguous parts
+// over the ranks (each rank samples only its own part where the discretization can). Each rank
+// then holds, and writes to the HDF5 file, its own part of the points and cells
+// (XdmfSeries::add_frame with a FrameData): nothing is gathered to rank 0, and the datasets are
+// the ones a serial run writes.
 #pragma once
 
 #include <petscis.h>
@@ -18,8 +19,10 @@ namespace mlshell {
 
 class DistributedSampling {
  public:
-  /// `sampling` must be the layout's discretization's; only this rank's slice is kept.
-  DistributedSampling(const SurfaceSampling& sampling, const ParallelLayout& layout);
+  /// `part`: this rank's part of a sampling of the layout's discretization
+  /// (Discretization::sampling_part with this rank and the communicator's size). Collective;
+  /// throws std::invalid_argument if the parts do not follow each other in rank order.
+  DistributedSampling(const SurfaceSampling& part, const ParallelLayout& layout);
   ~DistributedSampling();
   DistributedSampling(const DistributedSampling&) = delete;
   DistributedSampling& operator=(const DistributedSampling&) = delete;

@@ -156,6 +156,11 @@ std::unique_ptr<SurfaceSampling> SubdivisionDiscretization::sampling(int samples
   return sample_limit_surface(*this, samples);
 }
 
+std::unique_ptr<SurfaceSampling> SubdivisionDiscretization::sampling_part(int samples, int i,
+                                                                          int n) const {
+  return sample_limit_surface(*this, samples, i, n);
+}
+
 SurfacePoint SubdivisionDiscretization::edge_point(const BoundaryEdge& e, double s) const {
   // Corners 0..3 sit at (0,0), (1,0), (1,1), (0,1); edge k runs from corner k to corner k+1.
   switch (e.edge) {

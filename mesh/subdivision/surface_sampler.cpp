@@ -6,11 +6,16 @@
 namespace mlshell {
 
 std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretization& disc,
-                                                      int k) {
+                                                      int k, int part, int parts) {
+  const auto& elements = disc.elements();
+  const auto num_elements = static_cast<std::int64_t>(elements.size());
+  const auto [first, last] = slice_range(num_elements, part, parts);
+  const std::int64_t points_per_element = (k + 1) * (k + 1), cells_per_element = k * k;
   std::vector<SurfacePoint> pts;
   std::vector<std::int64_t> cells;
-  for (int f : disc.elements()) {
-    const std::int64_t base = static_cast<std::int64_t>(pts.size());
+  for (std::int64_t e = first; e < last; ++e) {
+    const int f = elements[e];
+    const std::int64_t base = points_per_element * first + static_cast<std::int64_t>(pts.size());
     for (int j = 0; j <= k; ++j)
       for (int i = 0; i <= k; ++i) pts.push_back({f, double(i) / k, double(j) / k});
     for (int j = 0; j < k; ++j)
@@ -24,8 +29,7 @@ std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretiz
   std::vector<int> nodes;
   std::vector<double> weights;
   const auto& X = disc.mesh().points;
-  // In chunks, values only: every rank samples the whole surface (DistributedSampling keeps its
-  // slice), so this is replicated work.
+  // In chunks, values only.
   constexpr size_t kChunk = 4096;
   for (size_t first = 0; first < pts.size(); first += kChunk) {
     const std::vector<SurfacePoint> chunk(pts.begin() + first,
@@ -40,7 +44,12 @@ std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretiz
   }
   return std::make_unique<SurfaceSampling>(std::move(reference), std::move(offsets),
                                            std::move(nodes), std::move(weights), std::move(cells),
-                                           4);
+                                           4,
+                                           SurfaceSampling::Place{
+                                               points_per_element * first,
+                                               points_per_element * num_elements,
+                                               cells_per_element * first,
+                                               cells_per_element * num_elements});
 }
 
 }  // namespace mlshell

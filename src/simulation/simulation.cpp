@@ -134,7 +134,8 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
       std::find(formats.begin(), formats.end(), "obj") != formats.end()) {
     const LogEventScope event("Setup:sampling");
     output_->sampling = std::make_unique<DistributedSampling>(
-        *disc_->sampling(scene_.output.samples_for(scene_.geometry.refine)), *layout_);
+        *disc_->sampling_part(scene_.output.samples_for(scene_.geometry.refine), rank_, size_),
+        *layout_);
   }
   if (rank_ == 0) {
     fs::create_directories(output_->dir);

@@ -61,6 +61,8 @@ class SubdivisionDiscretization final : public Discretization {
   double mesh_size() const override { return mesh_size_; }
   /// The limit surface on a (samples+1)² grid per element.
   std::unique_ptr<SurfaceSampling> sampling(int samples) const override;
+  /// The elements of part i of n, sampled alone.
+  std::unique_ptr<SurfaceSampling> sampling_part(int samples, int i, int n) const override;
 
   const QuadMesh& mesh() const { return mesh_; }
   const LimitEvaluator& evaluator() const { return *evaluator_; }

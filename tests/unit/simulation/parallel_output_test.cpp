@@ -43,7 +43,9 @@ TEST(MpiParallelOutput, FramesOnTwoRanksHoldTheSerialDatasets) {
 
   // Parallel: each rank its slice, plus a cell field held by rank 0 alone (as face fields are).
   FrameData frame;
-  DistributedSampling distributed(*sampling, *tp.layout);
+  // Each rank samples its own part (SubdivisionDiscretization::sampling_part).
+  DistributedSampling distributed(*tp.disc->sampling_part(3, tp.layout->rank(), size),
+                                  *tp.layout);
   ASSERT_EQ(distributed.sample(u, &frame.geometry, &frame.displacement), 0);
   ASSERT_EQ(distributed.topology(&frame.topology), 0);
   PetscInt local_points;
