@@ -18,7 +18,8 @@ SurfaceSampling::SurfaceSampling(std::vector<double> reference, std::vector<std:
       cell_size_(cell_size),
       place_(place) {
   const auto n = static_cast<std::int64_t>(offsets_.size()) - 1;
-  if (n < 0 || offsets_.front() != 0 || offsets_.back() != static_cast<std::int64_t>(nodes_.size()) ||
+  if (n < 0 || offsets_.front() != 0 ||
+      offsets_.back() != static_cast<std::int64_t>(nodes_.size()) ||
       nodes_.size() != weights_.size() || reference_.size() != static_cast<size_t>(3 * n) ||
       cell_size_ < 3 || cells_.size() % cell_size_ != 0)
     throw std::invalid_argument("SurfaceSampling: inconsistent sizes (" + std::to_string(n) +
@@ -51,7 +52,8 @@ std::unique_ptr<SurfaceSampling> SurfaceSampling::slice(int i, int n) const {
   for (std::int64_t p = p0; p < p1; ++p) offsets.push_back(offsets_[p + 1] - offsets_[p0]);
   return std::make_unique<SurfaceSampling>(
       std::vector<double>(reference_.begin() + 3 * p0, reference_.begin() + 3 * p1),
-      std::move(offsets), std::vector<int>(nodes_.begin() + offsets_[p0], nodes_.begin() + offsets_[p1]),
+      std::move(offsets),
+      std::vector<int>(nodes_.begin() + offsets_[p0], nodes_.begin() + offsets_[p1]),
       std::vector<double>(weights_.begin() + offsets_[p0], weights_.begin() + offsets_[p1]),
       std::vector<std::int64_t>(cells_.begin() + cell_size_ * c0, cells_.begin() + cell_size_ * c1),
       cell_size_, Place{p0, num_points(), c0, num_cells()});

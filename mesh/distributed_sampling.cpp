@@ -8,8 +8,7 @@
 
 namespace mlshell {
 
-DistributedSampling::DistributedSampling(const SurfaceSampling& part,
-                                         const ParallelLayout& layout)
+DistributedSampling::DistributedSampling(const SurfaceSampling& part, const ParallelLayout& layout)
     : comm_(layout.comm()), cell_size_(part.cell_size()), num_cells_(part.place().total_cells) {
   // The parts must follow each other in rank order and cover the whole.
   const SurfaceSampling::Place& place = part.place();
@@ -27,8 +26,7 @@ DistributedSampling::DistributedSampling(const SurfaceSampling& part,
   if (!ok)
     throw std::invalid_argument(
         "DistributedSampling: the ranks' sampling parts do not follow each other in rank order");
-  const PetscInt rows = static_cast<PetscInt>(part.num_points()),
-                 owned = layout.num_owned_points();
+  const PetscInt rows = static_cast<PetscInt>(part.num_points()), owned = layout.num_owned_points();
   const auto& offsets = part.offsets();
   const auto& nodes = part.nodes();
   const auto& w = part.weights();

@@ -149,8 +149,7 @@ namespace {
 /// The prefilled matrix of `columns` with bs × bs blocks (bs = 3: a Hessian's pattern; bs = 1:
 /// one scalar per block, the same pattern over points).
 PetscErrorCode create_prefilled(MPI_Comm comm, PetscInt first_owned,
-                                const std::vector<std::vector<int>>& columns, PetscInt bs,
-                                Mat* A) {
+                                const std::vector<std::vector<int>>& columns, PetscInt bs, Mat* A) {
   PetscFunctionBeginUser;
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm, &size));
@@ -209,8 +208,7 @@ PetscErrorCode create_prefilled_block_matrix(MPI_Comm comm, PetscInt first_owned
 }
 
 PetscErrorCode create_prefilled_point_matrix(MPI_Comm comm, PetscInt first_owned,
-                                             const std::vector<std::vector<int>>& columns,
-                                             Mat* A) {
+                                             const std::vector<std::vector<int>>& columns, Mat* A) {
   return create_prefilled(comm, first_owned, columns, 1, A);
 }
 
@@ -340,8 +338,7 @@ PetscErrorCode zero_entries_with_ghost_rows(Mat A) {
 /// The ghost rows of `ghost_columns` (BlockPattern::ghost_columns), their SF and, for the
 /// blocks other ranks send here, their places in A (collective).
 PetscErrorCode setup_ghost_rows(Mat A, const BlockColumns& bc,
-                                const std::vector<std::vector<int>>& ghost_columns,
-                                GhostRows& g) {
+                                const std::vector<std::vector<int>>& ghost_columns, GhostRows& g) {
   PetscFunctionBeginUser;
   MPI_Comm comm = PetscObjectComm((PetscObject)A);
   PetscMPIInt size;
@@ -356,8 +353,8 @@ PetscErrorCode setup_ghost_rows(Mat A, const BlockColumns& bc,
   std::vector<PetscSFNode> owners;
   for (std::size_t l = 0; l < ghost_columns.size(); ++l) {
     const PetscInt row = bc.block_of_local[bc.num_owned + l];
-    const PetscInt owner = static_cast<PetscInt>(
-        std::upper_bound(ranges, ranges + size + 1, 3 * row) - ranges - 1);
+    const PetscInt owner =
+        static_cast<PetscInt>(std::upper_bound(ranges, ranges + size + 1, 3 * row) - ranges - 1);
     for (int c : ghost_columns[l]) {
       g.columns.push_back(c);
       owners.push_back({static_cast<PetscInt>(owner), row - ranges[owner] / 3});
@@ -396,7 +393,8 @@ PetscErrorCode setup_ghost_rows(Mat A, const BlockColumns& bc,
       }
       const PetscInt begin = csr.ia[p][3 * r];
       const PetscInt position =
-          column < 0 ? -1 : find_block(csr.ja[p] + begin, (csr.ia[p][3 * r + 1] - begin) / 3, column);
+          column < 0 ? -1
+                     : find_block(csr.ja[p] + begin, (csr.ia[p][3 * r + 1] - begin) / 3, column);
       PetscCheck(position >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
                  "another rank adds block (%" PetscInt_FMT ", %" PetscInt_FMT
                  ") outside the Hessian's pattern",
@@ -469,8 +467,8 @@ namespace {
 
 /// Adds row block i of an element matrix (`rows`: its three rows, `width` apart), whose point is
 /// a ghost, into the ghost rows; a block outside their pattern goes through PETSc's stash.
-PetscErrorCode add_ghost_row(Mat A, BlockColumns& bc, PetscInt n, const PetscInt* nodes,
-                             PetscInt i, const double* rows, PetscInt width) {
+PetscErrorCode add_ghost_row(Mat A, BlockColumns& bc, PetscInt n, const PetscInt* nodes, PetscInt i,
+                             const double* rows, PetscInt width) {
   PetscFunctionBeginUser;
   if (!bc.ghosts) {
     PetscCall(MatSetValuesBlockedLocal(A, 1, &nodes[i], n, nodes, rows, ADD_VALUES));

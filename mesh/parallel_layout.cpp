@@ -202,7 +202,8 @@ std::shared_ptr<const ParallelLayout::BlockPattern> ParallelLayout::block_patter
     const std::vector<int> stencil = disc_.stencil(f);
     for (int v : stencil)
       if (local_of_natural_[v] >= num_owned_)
-        for (int w : stencil) ghost[local_of_natural_[v] - num_owned_].push_back(petsc_of_natural_[w]);
+        for (int w : stencil)
+          ghost[local_of_natural_[v] - num_owned_].push_back(petsc_of_natural_[w]);
   }
   for (const auto& [a, b] : extra)
     if (local_of_natural_[a] >= 0 && local_of_natural_[b] >= 0) {

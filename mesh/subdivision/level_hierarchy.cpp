@@ -1,10 +1,10 @@
 // Levels with inherited partitions and their transfer operators (see level_hierarchy.hpp).
 #include "mlshell/subdivision/level_hierarchy.hpp"
 
-#include "mlshell/log_events.hpp"
-
 #include <map>
 #include <stdexcept>
+
+#include "mlshell/log_events.hpp"
 
 namespace mlshell {
 

@@ -5,8 +5,8 @@
 
 namespace mlshell {
 
-std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretization& disc,
-                                                      int k, int part, int parts) {
+std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretization& disc, int k,
+                                                      int part, int parts) {
   const auto& elements = disc.elements();
   const auto num_elements = static_cast<std::int64_t>(elements.size());
   const auto [first, last] = slice_range(num_elements, part, parts);
@@ -42,14 +42,11 @@ std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretiz
       offsets.push_back(static_cast<std::int64_t>(nodes.size()));
     }
   }
-  return std::make_unique<SurfaceSampling>(std::move(reference), std::move(offsets),
-                                           std::move(nodes), std::move(weights), std::move(cells),
-                                           4,
-                                           SurfaceSampling::Place{
-                                               points_per_element * first,
-                                               points_per_element * num_elements,
-                                               cells_per_element * first,
-                                               cells_per_element * num_elements});
+  return std::make_unique<SurfaceSampling>(
+      std::move(reference), std::move(offsets), std::move(nodes), std::move(weights),
+      std::move(cells), 4,
+      SurfaceSampling::Place{points_per_element * first, points_per_element * num_elements,
+                             cells_per_element * first, cells_per_element * num_elements});
 }
 
 }  // namespace mlshell
