@@ -189,11 +189,18 @@ void Simulation::setup_triangles() {
   } catch (const std::invalid_argument& e) {
     throw SceneError(scene_.file.string() + ": geometry.mesh: " + e.what());
   }
-  auto levels = std::make_unique<TriangleLevels>(comm_, std::move(mesh));
+  std::unique_ptr<TriangleLevels> levels;
+  {
+    const LogEventScope event("Setup:layout");
+    levels = std::make_unique<TriangleLevels>(comm_, std::move(mesh));
+  }
   const TriangleLevels& t = *levels;
-  multilevel_ = std::make_unique<MultilevelProblem>(*levels, scene_.time.dt, [&](int l) {
-    return build_triangle_problem(scene_, t.discretization(l), t.layout(l), frame_);
-  });
+  {
+    const LogEventScope event("Setup:problems");
+    multilevel_ = std::make_unique<MultilevelProblem>(*levels, scene_.time.dt, [&](int l) {
+      return build_triangle_problem(scene_, t.discretization(l), t.layout(l), frame_);
+    });
+  }
   const TriangleDiscretization& disc = t.discretization(t.finest());
   for (const auto& p : scene_.probes) {
     try {
