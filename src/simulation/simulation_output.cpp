@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -17,6 +18,16 @@
 #include "mlshell/simulation.hpp"
 
 namespace mlshell {
+
+namespace {
+
+/// Whether glibc's malloc was asked for transparent huge pages (the CLI's restart, main.cpp).
+bool huge_pages_requested() {
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  return tunables && std::string(tunables).find("glibc.malloc.hugetlb=1") != std::string::npos;
+}
+
+}  // namespace
 
 namespace {
 
@@ -272,7 +283,8 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"constraints", Json(constraints)},
         {"wall_time", Json(MPI_Wtime() - wall_start_)},
         {"memory", Json(Json::Object{{"peak_rss_mib_largest_rank", Json(peak_largest)},
-                                     {"peak_rss_mib_all_ranks", Json(peak_sum)}})}};
+                                     {"peak_rss_mib_all_ranks", Json(peak_sum)},
+                                     {"huge_pages", Json(huge_pages_requested())}})}};
     if (spectrum_)
       top.emplace_back(
           "hessian",

@@ -2,7 +2,8 @@
 # The options the convergence studies measure with: -mlshell_refine (the dof count follows, bad
 # values are refused), -mlshell_condition (the Hessian's spectrum in summary.json, the same on
 # 1 and 2 ranks), -mlshell_limit_csv (one row per grid point, the same surface on 2 ranks), the
-# SNES step solver (converges to the TAO answer; a bad kind is refused), and the -log_view stages.
+# SNES step solver (converges to the TAO answer; a bad kind is refused), the -log_view stages, and
+# the restart with transparent huge pages (summary.json says whether they were asked for).
 #
 # usage: bash measuring_options.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -36,6 +37,15 @@ refused "-mlshell_refine: must be in 0..8; got '-1'" -mlshell_refine -1
 refused "-mlshell_limit_csv: samples per element edge must be in 1..64; got '0'" -mlshell_limit_csv 0
 refused "-mlshell_condition_steps: must be in 2..2000; got '1'" -mlshell_condition_steps 1
 refused "-mlshell_step_solver: must be tao or snes; got 'newton'" -mlshell_step_solver newton
+
+echo "check: mlshell restarts itself with huge pages unless MLSHELL_HUGE_PAGES=0"
+pages() {  # pages DIR: summary.json's memory.huge_pages
+  $PY -c "import json,sys; print(json.load(open('$1/summary.json'))['memory']['huge_pages'])"
+}
+run 2 hp -mlshell_refine 1 || die "huge pages: $(cat hp.log)"
+[[ $(pages hp) == True ]] || die "2 ranks did not restart with GLIBC_TUNABLES=glibc.malloc.hugetlb=1"
+MLSHELL_HUGE_PAGES=0 run 1 nohp -mlshell_refine 1 || die "without huge pages: $(cat nohp.log)"
+[[ $(pages nohp) == False ]] || die "MLSHELL_HUGE_PAGES=0 still asked for huge pages"
 
 echo "check: -mlshell_condition and -mlshell_limit_csv on 1 and 2 ranks"
 for n in 1 2; do
