@@ -27,10 +27,6 @@ bool huge_pages_requested() {
   return tunables && std::string(tunables).find("glibc.malloc.hugetlb=1") != std::string::npos;
 }
 
-}  // namespace
-
-namespace {
-
 /// The PETSc options database as one "-name value ..." line: the options in effect, mlshell's
 /// defaults included (StepSolver sets them wherever no file or command line did), so that a
 /// run's configuration can be read and repeated from its summary.
