@@ -78,6 +78,14 @@ def find(rows, **match):
     return next((r for r in rows if all(r[k] == str(v) for k, v in match.items())), None)
 
 
+def spread(row):
+    """How many runs a parallel row is the fastest of, with the slowest one's wall time."""
+    runs, slowest = number(row.get("runs", "")), row.get("slowest_wall_time", "")
+    if not runs or runs < 2:
+        return "1"
+    return f"{runs:.0f} ({seconds(slowest)})"
+
+
 def bandwidth_ceiling(one):
     """2 × a 1-rank run's wall time / that of one of two copies run at once (None if absent)."""
     if not one:
@@ -407,6 +415,7 @@ class Report:
             for r in (one, two):
                 if r:
                     body.append([scene, solver, count(dofs), r["ranks"], seconds(r["wall_time"]),
+                                 spread(r),
                                  seconds(r["stage_setup"]), seconds(r["stage_solve"]),
                                  seconds(r["stage_output"]), outcome(r),
                                  seconds(r.get("shared_wall_time", "")),
@@ -436,9 +445,11 @@ class Report:
                  "`rmtr-patch`: full-multigrid start and vertex-patch smoothing. *Shared*: the wall time of "
                  "one of two 1-rank copies run at once, which share the memory bandwidth and "
                  "caches as 2 ranks do; *ceiling* = 2 × 1-rank wall / shared wall, the speedup "
-                 "of a perfectly parallel code on this machine.\n\n" + table(
-                     ["scene", "solver", "dofs", "ranks", "wall", "Setup", "Solve", "Output",
-                      "V-cycles", "shared", "ceiling"], body))
+                 "of a perfectly parallel code on this machine. Where a pair ran more than "
+                 "once (*runs*, in turn), each row is its fastest run, the slowest in "
+                 "brackets.\n\n" + table(
+                     ["scene", "solver", "dofs", "ranks", "wall", "runs (slowest)", "Setup",
+                      "Solve", "Output", "V-cycles", "shared", "ceiling"], body))
         events = self.with_solver("parallel_events")
         if events:
             body = [[e["scene"], e["solver"], e["refine"], e["ranks"], e["event"],

@@ -164,7 +164,7 @@ class ReportFromKnownRows(unittest.TestCase):
             run_row("trampoline", 51483, 1, refine=5, ranks=1, wall_time=19.0, stage_solve=9.0,
                     solver="rmtr-patch", shared_wall_time=20.5),
             run_row("trampoline", 51483, 1, refine=5, ranks=2, wall_time=10.0, stage_solve=4.5,
-                    solver="rmtr-patch"),
+                    solver="rmtr-patch", runs=3, slowest_wall_time=11.5),
             run_row("drooping", 51483, 12, refine=5, ranks=1, wall_time=72.0, stage_solve=71.0,
                     solver="rmtr-patch-dogleg"),
             run_row("drooping", 51483, 13, refine=5, ranks=2, wall_time=45.0, stage_solve=44.0,
@@ -188,6 +188,9 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| trampoline | rmtr-patch | 51,483 | 1 | 19 |", text)
         self.assertRegex(text, r"\| 1 \| 19 \|[^\n]*\| 20\.5 \| 1\.85 \|")
         self.assertNotIn("ceiling", text.split("(trampoline, rmtr)")[1].split("\n")[0])
+        # The fastest of three runs in turn, the slowest beside it; a single run says 1.
+        self.assertIn("| trampoline | rmtr-patch | 51,483 | 2 | 10 | 3 (11.5) |", text)
+        self.assertIn("| trampoline | rmtr-patch | 51,483 | 1 | 19 | 1 |", text)
 
     def test_scaling_table_ratios_and_goals(self):
         write(self.out, "scaling", [
