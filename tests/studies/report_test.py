@@ -192,6 +192,16 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| trampoline | rmtr-patch | 51,483 | 2 | 10 | 3 (11.5) |", text)
         self.assertIn("| trampoline | rmtr-patch | 51,483 | 1 | 19 | 1 |", text)
 
+    def test_a_ratio_just_short_of_its_goal_is_not_rounded_up_to_it(self):
+        write(self.out, "parallel", [
+            run_row("trampoline", 51483, 2, refine=5, ranks=1, wall_time=8.66, stage_solve=7.0,
+                    solver="rmtr-patch-dogleg"),
+            run_row("trampoline", 51483, 2, refine=5, ranks=2, wall_time=4.82, stage_solve=4.0,
+                    solver="rmtr-patch-dogleg")])
+        text = self.build()
+        self.assertIn("(trampoline, rmtr-patch-dogleg) | 1.797×", text)  # 8.66 / 4.82
+        self.assertRegex(text, r"rmtr-patch-dogleg\) \| 1\.797×[^\n]*\| \*\*not met\*\* \|")
+
     def test_scaling_table_ratios_and_goals(self):
         write(self.out, "scaling", [
             run_row("trampoline", 51483, 2, solver="rmtr", refine=5, wall_time=15.0,
