@@ -94,11 +94,12 @@ def spread(row):
 
 
 def bandwidth_ceiling(one):
-    """2 × a 1-rank run's wall time / that of one of two copies run at once (None if absent)."""
+    """2 × a 1-rank run's wall time / that of one of two copies run at once (None if absent),
+    at most 2: copies that ran faster than the run alone measured the machine's noise."""
     if not one:
         return None
     alone, shared = number(one.get("wall_time")), number(one.get("shared_wall_time"))
-    return 2.0 * alone / shared if alone and shared else None
+    return min(2.0, 2.0 * alone / shared) if alone and shared else None
 
 
 class Report:
@@ -451,7 +452,8 @@ class Report:
                  "`rmtr-patch`: full-multigrid start and vertex-patch smoothing. *Shared*: the wall time of "
                  "one of two 1-rank copies run at once, which share the memory bandwidth and "
                  "caches as 2 ranks do; *ceiling* = 2 × 1-rank wall / shared wall, the speedup "
-                 "of a perfectly parallel code on this machine. Where a pair ran more than "
+                 "of a perfectly parallel code on this machine (at most 2: shared copies faster "
+                 "than the run alone measure the machine's noise). Where a pair ran more than "
                  "once (*runs*, in turn), each row is its fastest run, the slowest in "
                  "brackets.\n\n" + table(
                      ["scene", "solver", "dofs", "ranks", "wall", "runs (slowest)", "Setup",

@@ -195,11 +195,14 @@ class ReportFromKnownRows(unittest.TestCase):
     def test_a_ratio_just_short_of_its_goal_is_not_rounded_up_to_it(self):
         write(self.out, "parallel", [
             run_row("trampoline", 51483, 2, refine=5, ranks=1, wall_time=8.66, stage_solve=7.0,
-                    solver="rmtr-patch-dogleg"),
+                    solver="rmtr-patch-dogleg", shared_wall_time=6.87),
             run_row("trampoline", 51483, 2, refine=5, ranks=2, wall_time=4.82, stage_solve=4.0,
                     solver="rmtr-patch-dogleg")])
         text = self.build()
-        self.assertIn("(trampoline, rmtr-patch-dogleg) | 1.797×", text)  # 8.66 / 4.82
+        # 8.66 / 4.82; the shared copies ran faster than the run alone (2 × 8.66 / 6.87 = 2.52):
+        # noise, and no code can gain more than 2× on 2 ranks.
+        self.assertIn("(trampoline, rmtr-patch-dogleg) | 1.797× (this machine's ceiling 2.00×)",
+                      text)
         self.assertRegex(text, r"rmtr-patch-dogleg\) \| 1\.797×[^\n]*\| \*\*not met\*\* \|")
 
     def test_scaling_table_ratios_and_goals(self):
