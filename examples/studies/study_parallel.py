@@ -34,15 +34,15 @@ def run(ctx):
             for refine in ctx.pick((2,), (4, 5)):
                 runs, shares = {1: [], 2: []}, []
                 for k in range(ctx.pick(*REPEATS)):
+                    again = f"-run{k + 1}" if k else ""
                     for ranks in (1, 2):
-                        tag = f"{scene}-r{refine}-{solver}-n{ranks}" + (f"-run{k + 1}" if k else "")
                         # The first run of each is shared with other studies (ctx.run remembers
                         # it); the repeats must run again.
                         go = ctx.run if k == 0 else ctx.runner.run
-                        runs[ranks].append(go(NAME, tag, scene, refine, options, ranks=ranks,
-                                              log_view=True))
-                    shares.append(shared(ctx, f"{scene}-r{refine}-{solver}-n1-shared" +
-                                         (f"-run{k + 1}" if k else ""), scene, refine, options))
+                        runs[ranks].append(go(NAME, f"{scene}-r{refine}-{solver}-n{ranks}{again}",
+                                              scene, refine, options, ranks=ranks, log_view=True))
+                    shares.append(shared(ctx, f"{scene}-r{refine}-{solver}-n1-shared{again}",
+                                         scene, refine, options))
                 for ranks in (1, 2):
                     r = fastest(runs[ranks])
                     log = r.get("log", {"stages": {}, "events": {}})
