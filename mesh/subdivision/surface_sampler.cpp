@@ -31,9 +31,9 @@ std::unique_ptr<SurfaceSampling> sample_limit_surface(const SubdivisionDiscretiz
   const auto& X = disc.mesh().points;
   // In chunks, values only.
   constexpr size_t kChunk = 4096;
-  for (size_t first = 0; first < pts.size(); first += kChunk) {
-    const std::vector<SurfacePoint> chunk(pts.begin() + first,
-                                          pts.begin() + std::min(pts.size(), first + kChunk));
+  for (size_t begin = 0; begin < pts.size(); begin += kChunk) {
+    const std::vector<SurfacePoint> chunk(pts.begin() + begin,
+                                          pts.begin() + std::min(pts.size(), begin + kChunk));
     for (const PointBasis& b : disc.evaluator().evaluate(chunk, BasisSlots::kValueOnly)) {
       const Point3 x = b.apply(kValue, X);
       reference.insert(reference.end(), {x[0], x[1], x[2]});

@@ -173,8 +173,6 @@ void apply_scene_solver_file(mlshell::Scene& scene, int argc, char** argv) {
   PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsInsert(nullptr, &argc, &argv, nullptr));
 }
 
-}  // namespace
-
 /// Large arrays (Hessians, vertex-patch factors, MUMPS's factors, frames) on transparent huge
 /// pages: glibc's malloc advises its large chunks with MADV_HUGEPAGE when the process starts with
 /// GLIBC_TUNABLES=glibc.malloc.hugetlb=1 (glibc 2.35 and later; earlier ones ignore it, and so
@@ -200,6 +198,8 @@ void restart_with_huge_pages(char** argv) {
   else
     unsetenv("GLIBC_TUNABLES");
 }
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (wants_help(argc, argv)) {
