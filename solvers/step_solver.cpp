@@ -130,7 +130,7 @@ StepSolver::StepSolver(Objective& problem, MultilevelObjective* levels) : proble
   // full-multigrid start: faster than factorised Dogleg smoothing on every scene measured from
   // 13,467 dofs up (within 6 % below), the fastest on free-hanging cloth but for one
   // resolution, second on the nearly linear trampoline, whose scene names rmtr-patch.yaml
-  // (README, Solver; petsc-options/rmtr-patch-dogleg.yaml is this default spelled out,
+  // (docs/solvers.md; petsc-options/rmtr-patch-dogleg.yaml is this default spelled out,
   // rmtr.yaml the factorised Dogleg smoothing that was the default before). Options files
   // state what they change.
   PetscCallAbort(comm, default_options("-tao_", {{"type", "rmtr"},

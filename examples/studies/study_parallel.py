@@ -27,7 +27,7 @@ def run(ctx):
     for scene in ctx.scenes(("trampoline",), ("trampoline", "drooping")):
         for solver in ctx.solvers(SOLVERS):
             # rmtr-patch's one V-cycle per level in the start does not converge on the
-            # free-hanging scenes (README); they need rmtr-patch-galerkin.
+            # free-hanging scenes (docs/solvers.md); they need rmtr-patch-galerkin.
             if solver == "rmtr-patch" and scene != "trampoline":
                 continue
             options = with_tolerance(solver, ctx.source, 1e-7, ctx.pick(300, 1000))

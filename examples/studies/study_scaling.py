@@ -66,7 +66,7 @@ def too_big(solver, previous_peak_mib, ranks, available):
 # rediscretised coarse models of its free-hanging states cost it 3× the V-cycles), and the
 # paper's smoother stalls already on the trampoline. The re-entrant corner (91 cage faces:
 # 5,115 dofs at refine 2, 18,939 at 3, 72,795 at 4) takes RMTR 118–477 V-cycles at 5,115 dofs
-# (README). The drape (two corners drawn together) runs the default up to 51,483 dofs, with
+# (docs/solvers.md). The drape (two corners drawn together) runs the default up to 51,483 dofs, with
 # factorised Dogleg smoothing and bnls + MUMPS below it as references.
 # mlshell's default runs the drooping cloth at 795,675 dofs too (15 V-cycles, 15 min, 5.6 GiB
 # per rank on 2026-12-05).
@@ -86,7 +86,7 @@ def run(ctx):
         given_up, peak = set(), {}
         for refine in ctx.pick((1, 2), (2, 3, 4, 5, 6, 7)):
             for solver in ctx.solvers(SOLVERS):
-                # The paper's smoother stalls (300 V-cycles leave |g| ~ 1e-2; README): it is
+                # The paper's smoother stalls (300 V-cycles leave |g| ~ 1e-2; docs/rmtr-on-cloth.md): it is
                 # measured where that costs seconds, not hours.
                 if solver in given_up or (solver == "rmtr-paper" and refine > ctx.pick(1, 3)):
                     continue

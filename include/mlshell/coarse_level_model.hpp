@@ -9,7 +9,7 @@
 //   h(x) = ⟨R ∇h_fine, x − x₀⟩ + ½ (x − x₀)ᵀ G (x − x₀),   G = J_Pᵀ ∇²h_fine J_P,
 // consistent to first and second order at x₀ whatever x₀ is. It serves where the projected
 // fine iterate is no state the coarse discretisation can represent: the projections of the
-// free-hanging drooping cloth have rediscretised coarse values up to 10²¹ (README, status).
+// free-hanging drooping cloth have rediscretised coarse values up to 10²¹ (docs/CHANGELOG.md).
 #pragma once
 
 #include "mlshell/objective.hpp"

@@ -22,8 +22,8 @@ geometry:                    required
   refine: int                uniform Catmull-Clark refinements of the cage, 0..8 (default 0)
   mesh:                      instead of cage and refine: a triangle-mesh shell (paper 2); one of
     {obj: path}              a triangle OBJ; `g name` lines name vertex groups for group(name)
-    {generator: rectangle, size: [w, h], faces: [nx, ny], origin: [x, y]}   structured, with
-        alternating diagonals (defaults size [1, 1], faces [8, 8]; or diagonals: uniform); or
+    {generator: rectangle, size: [w, h], faces: [nx, ny], origin: [x, y], diagonals: d}
+        structured, defaults size [1, 1], faces [8, 8], d alternating (or uniform); or
         edge_length: l      an unstructured Delaunay mesh with edges of about l (<= w/2, h/2)
     {generator: cylinder, radius: r, length: l, faces: [around >= 3, along]}   open, axis z
     {generator: dome, radius: r, opening_angle: a, rings: n}   apex on +z, rim at a in (0, pi)
@@ -47,7 +47,8 @@ material:                    required
     poisson_ratio: nu        in (-1, 0.5) (required)
   model: neo-hookean | st-venant-kirchhoff   triangle meshes (E, nu, thickness as above):
     volume_density: number   kg/m^3, >= 0 (required; instead of density)
-    bending: hinge | midedge hinge (default, paper 2) or midedge (Kirchhoff's plate; README)
+    bending: hinge | midedge hinge (default, paper 2) or midedge (Kirchhoff's plate;
+                             docs/physics.md)
   thickness: number          m, > 0; required (denim preset: 0.66e-3)
   density: number            area density kg/m^2, >= 0; required (denim preset: 0.4)
   thickness_points: int      Gauss points through the thickness, 1..8 (default 3)
@@ -110,21 +111,25 @@ WHERE: selections for effects and probes
   {at: ...} or {box: ...}. On triangle meshes a POINT is the nearest vertex. Inside a {...}
   map, quote point(u, v): the comma would end the value otherwise.
 
-EXAMPLE
-  name: drape
+EXAMPLE (examples/drape.yaml, the main job; docs/scene-format.md has every key in detail)
   geometry:
     cage: {generator: rectangle, size: [1.0, 1.0], faces: [4, 4]}
-    refine: 2
+    refine: 2                    # 1,083 dofs
   material: {model: clyde-orthotropic, preset: denim, thickness: 0.66e-3, density: 0.4}
   effects:
     - inertia
-    - gravity
-    - dirichlet: {where: corner(bottom-left), motion: {translate: [0.2, 0.2, 0], over: [0, 10]}}
-    - dirichlet: {where: corner(top-right), motion: {translate: [-0.2, -0.2, 0], over: [0, 10]}}
-    - line_load: {where: boundary(bottom), force_per_length: [0, 0, -4], ramp: true}
+    - gravity: [0, 0, -9.81]
+    - dirichlet:
+        where: corner(bottom-left)
+        motion: {translate: [0.141421356, 0.141421356, 0], over: [0, 10]}
+    - dirichlet:
+        where: corner(top-right)
+        motion: {translate: [-0.141421356, -0.141421356, 0], over: [0, 10]}
   time: {dt: 1.0, steps: 10}
-  probes: {center: {at: [0.5, 0.5, 0]}}
-  output: {dir: out/drape, every: 1, formats: [xdmf, csv], samples_per_face: 4}
+  probes:
+    center: {at: [0.5, 0.5, 0]}
+    bottom-right: {at: [1.0, 0.0, 0]}
+  output: {dir: out/drape, every: 1, formats: [xdmf, obj, csv], checkpoint_every: 5}
 )";
 }
 

@@ -27,7 +27,7 @@ material: {model: clyde-orthotropic, preset: denim, thickness: 0.66e-3, density:
 effects:
   - inertia
   - gravity
-  - dirichlet: {where: boundary}   # all edges: converges at this dt (see README on denim)
+  - dirichlet: {where: boundary}   # all edges: converges at this dt (see docs/physics.md on denim)
 time: {dt: 0.05, steps: 4}
 probes:
   center: {at: [0.5, 0.5, 0]}

@@ -109,7 +109,7 @@ else:
         problems.append("exit 3 but status %s, reason %s" % (s["status"], reason))
 # RMTR: f never increases from one V-cycle to the next within a step, beyond its rounding: near
 # the limiting accuracy a step is accepted on the gradients' trapezoidal reduction if f rose by
-# less than 10 times its evaluation error (about 1e-12 |f| for Table 1's sums; README), so a
+# less than 10 times its evaluation error (about 1e-12 |f| for Table 1's sums; docs/solvers.md), so a
 # rise below 1e-10 |f| is round-off, and a wrongly accepted step rises far more.
 previous, cycles = None, 0
 for line in open(log_path):

@@ -351,7 +351,7 @@ TEST(Rmtr, TheStartEndsALevelAtItsFloorWhereverItLies) {
 
 // The paper's smoother (ten plain STCG iterations) leaves near-null modes of the ghost ring and
 // the boundary rows, which the coarse levels cannot represent, untouched: on the trampoline it
-// stalls (|g| ~ 1e-2 after 30 V-cycles, README). Preconditioned by vertex patches, whose exact
+// stalls (|g| ~ 1e-2 after 30 V-cycles, docs/rmtr-on-cloth.md). Preconditioned by vertex patches, whose exact
 // solves cover those modes, the same V-cycle converges in a handful of cycles. Both runs use
 // the paper's V-cycle otherwise (first-order coarse models, no subspace steps or retries).
 TEST(Rmtr, PatchSmootherConvergesWhereThePaperSmootherStalls) {
