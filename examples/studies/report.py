@@ -1,6 +1,9 @@
 #!/usr/bin/python3
-"""REPORT.md from the CSV files the studies wrote: tables with the paper's values side by side,
-the plots, the headline figures and the performance goals (met or by how much not).
+"""REPORT.md from the CSV files the studies wrote. In order: a title and what the studies are,
+the headline (one small table per kind of comparison, each saying what it compares against
+what), the performance goals (met or by how much not), one section per study (each opening with
+what it measures and against what: the paper's tables side by side, the plots), and last the
+commands that filled the folder and the build behind every row (Reproduce, Provenance).
 
 usage: report.py OUT_DIR     (reads OUT_DIR/*.csv and meta.json, writes OUT_DIR/REPORT.md)"""
 import json
@@ -12,7 +15,7 @@ import plots
 import study_iterations
 import study_scaling
 from context import PROVENANCE, number, read_csv
-from solvers import DEFAULT_SOLVER, scene_solver
+from solvers import DEFAULT_SOLVER, describe, scene_solver
 
 GOAL_SPEEDUP_PEERS = 3.0
 GOAL_SPEEDUP_RANKS = 1.8
@@ -22,6 +25,8 @@ GOAL_SCALING = ((51483, 3.0), (201243, 5.0))
 GOAL_SCALING_CYCLES = 20
 GOAL_SCALING_TABLE4 = 5  # elsewhere: at most 1/5 of the paper's Table 4 at as many levels
 SINGLE_LEVEL = ("tr", "bnls-mumps")
+# The headline's groups, in the order they are shown (Report.headline_group).
+HEADLINE_ORDER = ("cycles", "single-level", "peers", "ranks")
 
 
 def table(header, rows):
@@ -52,6 +57,11 @@ def outcome(row, column="iterations"):
     why = row["reason"].replace("DIVERGED_", "").lower()
     n = count(row[column])
     return (f"{n} " if n else "") + f"(stopped: {why}" + (f", \\|g\\| {g:.1e}" if g else "") + ")"
+
+
+def measures(what, against):
+    """The line that opens a study's section: what it measures and against what."""
+    return f"**Measures** {what}, **against** {against}.\n\n"
 
 
 def paper_cell(v):
@@ -106,7 +116,7 @@ class Report:
     def __init__(self, out):
         self.out = Path(out)
         self.parts = []
-        self.headline = []
+        self.headline = {}  # kind -> its group (headline_group)
         self.goals = []
         self.meta = {}
         if (self.out / "meta.json").is_file():
@@ -119,6 +129,12 @@ class Report:
     def add(self, text):
         self.parts.append(text)
 
+    def headline_group(self, kind, title, compares, header):
+        """The rows of the headline's group `kind` (one of HEADLINE_ORDER): a small table under
+        `title`, opened by `compares`, the sentence that says what its rows compare."""
+        return self.headline.setdefault(kind, {"title": title, "compares": compares,
+                                               "header": header, "rows": []})["rows"]
+
     def image(self, name):
         if name:
             self.add(f"![{name}]({name})\n")
@@ -130,11 +146,14 @@ class Report:
             return
         table1 = [r for r in rows if r.get("preset") == "denim-table1"]
         rows = [r for r in rows if r.get("preset") in (None, "", "denim")]
-        self.add("## Tables 3–5: iterations per step, dt = 1\n\nEach cell: mlshell / paper. "
-                 "TR is the single-level trust region with Dogleg; RMTR runs factorised Dogleg "
-                 "smoothing (`rmtr.yaml`, mlshell's default until 2026-12-05) and mlshell's "
-                 "default (`rmtr-patch-dogleg.yaml`). Tolerance (7.1): \\|g\\| < 1e-7; rows "
-                 "without a build under Provenance also stopped at \\|g\\|/\\|g₀\\| < "
+        self.add("## Tables 3–5: iterations per step, dt = 1\n\n" + measures(
+                 "the iterations of one step of dt = 1 of single-level TR and of two RMTR "
+                 "configurations on the four scenes", "the paper's Tables 3 and 4 (its TR and "
+                 "its RMTR)") + "Each cell: mlshell / paper. TR is the single-level trust "
+                 "region with Dogleg; RMTR runs factorised Dogleg smoothing (`rmtr.yaml`, "
+                 "mlshell's default until 2026-12-05) and mlshell's default "
+                 "(`rmtr-patch-dogleg.yaml`). Tolerance (7.1): \\|g\\| < 1e-7; rows without a "
+                 "build under [Provenance](#provenance) also stopped at \\|g\\|/\\|g₀\\| < "
                  "1e-10, which ended the drape (\\|g₀\\| > 10⁵) at up to \\|g\\| = 3e-4. "
                  "Every study ignores the scenes' own solver files (the trampoline's is "
                  "`rmtr-patch`; the other scenes use mlshell's default).\n")
@@ -164,26 +183,40 @@ class Report:
         if `headline` (mlshell's default's, where measured), and the goal of matching the paper."""
         levels = sorted({int(r["levels"]) for r in rm})
         default = solver == DEFAULT_SOLVER
+        title = ("mlshell's default (`rmtr-patch-dogleg.yaml`)" if default else
+                 "factorised Dogleg smoothing (`rmtr.yaml`)")
         body, met, compared = [], 0, 0
+        if headline:
+            who = ("mlshell's default, `rmtr-patch-dogleg` (Dogleg smoothing with "
+                   "patch-preconditioned CG Newton points, no fine factorisation)" if default
+                   else f"`{solver}` (factorised Dogleg smoothing, `rmtr.yaml`)"
+                   if solver == "rmtr" else f"`{solver}` ({describe(solver)})")
+            grid = self.headline_group(
+                "cycles", "V-cycles: " + ("mlshell's default (`rmtr-patch-dogleg`)" if default
+                                          else f"`{solver}`") + " against the paper's Table 4",
+                f"Compares the V-cycles of {who} with the paper's Table 4, measured by the "
+                "paper's own RMTR configuration (§7.3: ST-CG smoothing, Dogleg on the coarsest "
+                "level): different solvers on the same scenes, levels and tolerance (one step "
+                "of dt = 1, \\|g\\| < 1e-7). Each cell: mlshell / paper (dofs of the finest "
+                "level).",
+                ["scene"] + [f"{k} levels" for k in levels])
         for scene in paper.SCENES:
-            line = [scene]
+            line, cells = [scene], [scene]
             for lv in levels:
                 r = find(rm, scene=scene, levels=lv)
                 ref = paper.RMTR_CYCLES[scene][paper.LEVELS.index(lv)] \
                     if lv in paper.LEVELS else None
                 line.append(f"{outcome(r)} / {paper_cell(ref)}")
+                cells.append(line[-1] if r is None or not r["reason"].startswith("not run")
+                             else f"not run / {paper_cell(ref)}")
                 if r and r["dofs"] and ref:  # a row not run is not compared
                     compared += 1
                     if r["converged"] == "1" and number(r["iterations"]) <= ref:
                         met += 1
-                    if headline:
-                        self.headline.append(
-                            (f"V-cycles, {solver}",
-                             f"{scene}, {lv} levels ({count(r['dofs'])} dofs)",
-                             f"{outcome(r)} vs paper {ref:,}"))
+                    cells[-1] += f" ({count(r['dofs'])})"
             body.append(line)
-        title = ("mlshell's default (`rmtr-patch-dogleg.yaml`)" if default else
-                 "factorised Dogleg smoothing (`rmtr.yaml`)")
+            if headline and any(r["scene"] == scene and r["dofs"] for r in rm):
+                grid.append(cells)
         self.add(f"### Table 4: RMTR V-cycles vs number of levels, {title}\n\n" + table(
             ["scene"] + [f"{k} levels" for k in levels], body))
         if compared:
@@ -229,7 +262,10 @@ class Report:
                              f"{outcome(rm, column)} / {p[1]:,}", f"{ratio} / {p[0] / p[1]:.2f}",
                              f"{seconds(tr[column + '_per_iteration'])} / {p[2]}",
                              f"{seconds(rm[column + '_per_iteration'])} / {p[3]}"])
-        self.add("## Tables 6–7: work units (eq. 7.3–7.4)\n\nmlshell / paper (1,083 dofs, RMTR "
+        self.add("## Tables 6–7: work units (eq. 7.3–7.4)\n\n" + measures(
+                 "the assemblies and QP solves, in fine-level work units, of single-level TR "
+                 "and of RMTR (`rmtr.yaml`) on three levels", "the paper's Tables 6 and 7 (its "
+                 "TR and its RMTR)") + "mlshell / paper (1,083 dofs, RMTR "
                  "on three levels). "
                  "One work unit is one assembly (or QP solve) on the finest level; coarse levels "
                  "count by their share of control points.\n\n" + table(
@@ -253,7 +289,10 @@ class Report:
                     body.append([scene, preset, any_row["levels"],
                                  count(any_row["dofs"]) if any_row["dofs"] else "",
                                  f"{outcome(lsq)} / {p[0]:,}", f"{outcome(rev)} / {p[1]:,}"])
-        self.add("## Table 8: projection operator\n\nV-cycles, mlshell / paper (the paper: "
+        self.add("## Table 8: projection operator\n\n" + measures(
+                 "the V-cycles of RMTR (`rmtr.yaml`) with the least-squares fit and with "
+                 "reverse subdivision as the projection to coarser levels",
+                 "the paper's Table 8") + "V-cycles, mlshell / paper (the paper: "
                  "3,675 dofs, four levels; a scene too slow there is solved coarser, with "
                  "levels = refine + 1).\n\n" + table(
                      ["scene", "preset", "levels", "dofs", "least-squares fit (5.18)",
@@ -268,7 +307,10 @@ class Report:
                  f"{number(r['lambda_min'], 0):.3e}", f"{number(r['lambda_max'], 0):.3e}",
                  f"{number(r['condition'], 0):.3e}", "yes" if r["settled"] == "1" else "no",
                  "yes" if r["converged"] == "1" else r["reason"]] for r in rows]
-        self.add("## Figure 9: condition number of the Hessian\n\nTrampoline, one step of dt = "
+        self.add("## Figure 9: condition number of the Hessian\n\n" + measures(
+                 "the condition number of the trampoline's Hessian as the resolution and the "
+                 "penalty β grow", "the paper's Figure 9 (as its text states it)") +
+                 "Trampoline, one step of dt = "
                  "1, Hessian at the final iterate. Estimated by Lanczos with full "
                  "reorthogonalisation on H (largest \\|λ\\|) and on H⁻¹ through a MUMPS LDLᵀ "
                  "factorisation (smallest \\|λ\\|): `mlshell -mlshell_condition`. Paper: "
@@ -297,7 +339,11 @@ class Report:
             return "none" if v is None else ("1" if v == 1 else f"1/{round(1 / v)}")
         body = [[solver] + [cell(largest.get((c, solver))) for c in columns]
                 for solver in solvers]
-        self.add("## Figure 10: largest dt that converges\n\nOne step from rest at dt ∈ {" +
+        self.add("## Figure 10: largest dt that converges\n\n" + measures(
+                 "the largest time step at which each of five solvers (RMTR, single-level TR, "
+                 "line-search Newton, damped Newton, the linearized equation) converges on each "
+                 "scene",
+                 "the paper's Figure 10") + "One step from rest at dt ∈ {" +
                  ", ".join(cell(t) for t in tried) + "}, refine 2 (1,083 dofs; the re-entrant "
                  "corner's finer cage: refine 1). Paper (1,083 dofs): "
                  "the trust-region solvers converge at every dt for every scene; line search, "
@@ -310,13 +356,16 @@ class Report:
         rows = self.csv("accuracy")
         if rows is None:
             return
-        self.add("## Accuracy vs time\n\nError of one dt = 1 step against a reference solved "
-                 "by RMTR two levels finer than the finest run, against wall time (setup, solve "
-                 "and output of the whole run). Limit-surface error: L² distance of the "
-                 "displacements over the reference configuration (trapezoidal rule on the "
-                 "reference elements). Each point is one resolution × tolerance × solver; the "
-                 "line is the Pareto front. The table lists the front: for a time budget, take "
-                 "the last row that fits.\n")
+        self.add("## Accuracy vs time\n\n" + measures(
+                 "the error and the wall time of RMTR's, single-level TR's and PETSc's "
+                 "solvers' solutions over resolutions and tolerances", "a finer RMTR "
+                 "reference solution (the paper has no such figure)") + "Error of one dt = 1 "
+                 "step against a reference solved by RMTR two levels finer than the finest run, "
+                 "against wall time (setup, solve and output of the whole run). Limit-surface "
+                 "error: L² distance of the displacements over the reference configuration "
+                 "(trapezoidal rule on the reference elements). Each point is one resolution × "
+                 "tolerance × solver; the line is the Pareto front. The table lists the front: "
+                 "for a time budget, take the last row that fits.\n")
         for scene in dict.fromkeys(r["scene"] for r in rows):
             mine = [r for r in rows if r["scene"] == scene and number(r["l2_error"]) is not None]
             if not mine:
@@ -343,6 +392,14 @@ class Report:
         if rows is None:
             return
         body = []
+        head = self.headline_group(
+            "peers", "Time: RMTR against PETSc's solvers",
+            "Compares the whole-run wall time (setup, solve, output) of the scene's own RMTR "
+            "configuration (`rmtr.yaml` where that was not run) with the fastest converged of "
+            "PETSc's TAO and SNES Newton solvers (MUMPS, GAMG, BoomerAMG; see *RMTR vs PETSc's "
+            "solvers*): different solvers, the same step, tolerance and ranks. Ratio: the PETSc "
+            "solver's time / RMTR's (above 1: RMTR is faster).",
+            ["scene", "dofs", "RMTR", "fastest PETSc solver", "whole-run time, PETSc / RMTR"])
         for scene, refine in dict.fromkeys((r["scene"], r["refine"]) for r in rows):
             group = [r for r in rows if r["scene"] == scene and r["refine"] == refine]
             dofs = next((r["dofs"] for r in group if r["dofs"]), "")
@@ -363,9 +420,7 @@ class Report:
                     best = r
             if t_rm and best:
                 ratio = number(best["wall_time"]) / t_rm
-                self.headline.append((f"{name} vs best PETSc solver",
-                                      f"{scene}, {count(dofs)} dofs",
-                                      f"{best['solver']} takes {ratio:.2f}× {name}'s time"))
+                head.append([scene, count(dofs), name, best["solver"], f"{ratio:.2f}×"])
                 if int(dofs or 0) == GOAL_DOFS:
                     ok = ratio >= GOAL_SPEEDUP_PEERS
                     self.goals.append((f"{name} ≥ {GOAL_SPEEDUP_PEERS:g}× faster than the "
@@ -373,9 +428,13 @@ class Report:
                                        against(ratio, GOAL_SPEEDUP_PEERS) +
                                        ("" if ok else self.time_split(scene, dofs)), ok))
             elif not t_rm:
-                self.headline.append((f"{name} vs best PETSc solver",
-                                      f"{scene}, {count(dofs)} dofs", f"{name} did not converge"))
-        self.add("## RMTR vs PETSc's solvers\n\nSame step (dt = 1), same tolerance (\\|g\\| < "
+                head.append([scene, count(dofs), name, "none compared",
+                             f"{name} did not converge"])
+        self.add("## RMTR vs PETSc's solvers\n\n" + measures(
+                 "the wall time, iterations and linear iterations of PETSc's TAO and SNES "
+                 "Newton solvers (MUMPS, GAMG, BoomerAMG)",
+                 "RMTR on the same step: the scene's own configuration and `rmtr.yaml`") +
+                 "Same step (dt = 1), same tolerance (\\|g\\| < "
                  "1e-7), same ranks. `rmtr`: factorised Dogleg smoothing (`rmtr.yaml`); the "
                  "scene's own configuration (`rmtr-patch` on the trampoline) has no factorisation "
                  "above the coarsest level. Ratio: wall time over the scene's own configuration's, "
@@ -413,7 +472,7 @@ class Report:
         rows = self.with_solver("parallel")
         if rows is None:
             return
-        body = []
+        body, speedups = [], {}  # (scene, solver) -> {dofs: 1-rank wall / 2-rank wall}
         for scene, dofs, solver in dict.fromkeys((r["scene"], r["dofs"], r["solver"])
                                                  for r in rows):
             one, two = (find(rows, scene=scene, dofs=dofs, solver=solver, ranks=n)
@@ -429,8 +488,7 @@ class Report:
                                  f"{ceiling:.2f}" if ceiling and r is one else ""])
             if one and two and number(one["wall_time"]) and number(two["wall_time"]):
                 s = number(one["wall_time"]) / number(two["wall_time"])
-                self.headline.append(("2-rank speedup (wall)",
-                                      f"{scene}, {count(dofs)} dofs, {solver}", f"{s:.2f}"))
+                speedups.setdefault((scene, solver), {})[int(dofs or 0)] = s
                 if int(dofs or 0) == GOAL_DOFS:
                     ok = s >= GOAL_SPEEDUP_RANKS
                     bound = f" (this machine's ceiling {ceiling:.2f}×)" if ceiling else ""
@@ -447,7 +505,21 @@ class Report:
                                                               self.time_split(scene, dofs,
                                                                               solver=solver)),
                                        ok))
-        self.add("## Parallel: 1 vs 2 ranks\n\nOne step of dt = 1; times in seconds by "
+        if speedups:
+            sizes = sorted({d for by_dofs in speedups.values() for d in by_dofs})
+            head = self.headline_group(
+                "ranks", "Parallel: 2 MPI ranks against 1",
+                "Compares each RMTR configuration with itself: its wall time on 1 MPI rank / "
+                "on 2 ranks (the same solver on both sides; this machine's ceiling is under "
+                "*Parallel*).",
+                ["scene", "solver"] + [f"{d:,} dofs" for d in sizes])
+            for (scene, solver), by_dofs in speedups.items():
+                head.append([scene, solver] + [f"{by_dofs[d]:.2f}×" if d in by_dofs else ""
+                                               for d in sizes])
+        self.add("## Parallel: 1 vs 2 ranks\n\n" + measures(
+                 "the wall time of each RMTR configuration on 1 and on 2 MPI ranks, by "
+                 "`-log_view` stage", "itself: the speedup, beside this machine's ceiling for "
+                 "a perfectly parallel code") + "One step of dt = 1; times in seconds by "
                  "`-log_view` stage. `rmtr`: factorised Dogleg smoothing (`rmtr.yaml`); "
                  "`rmtr-patch`: full-multigrid start and vertex-patch smoothing. *Shared*: the wall time of "
                  "one of two 1-rank copies run at once, which share the memory bandwidth and "
@@ -497,7 +569,11 @@ class Report:
                                 f"{count(r['peak_rss_mib'])} MiB")
             body.append(line)
         if scene == "trampoline":
-            self.add("## RMTR at scale: V-cycles, time and memory against resolution\n\n"
+            self.add("## RMTR at scale: V-cycles, time and memory against resolution\n\n" +
+                     measures("the V-cycles, wall time and peak memory of RMTR configurations "
+                              "on the trampoline as the resolution grows",
+                              "the single-level solvers `tr` and `bnls-mumps` at the same "
+                              "resolutions") +
                      "Trampoline, one step of dt = 1, \\|g\\| < 1e-7. Each cell: V-cycles (RMTR) "
                      "or iterations · wall time · peak resident memory of the largest rank. "
                      "`rmtr`: Dogleg smoothing (a factorisation per smoothing step) after the "
@@ -519,7 +595,10 @@ class Report:
                      "from different runs (meta.json).\n\n" +
                      table(["refine", "dofs"] + solvers, body))
         else:
-            self.add(f"## RMTR at scale on free-hanging cloth: {scene}\n\n"
+            self.add(f"## RMTR at scale on free-hanging cloth: {scene}\n\n" +
+                     measures(f"the same as on the trampoline for the {scene} scene",
+                              "the single-level solvers where they were run, and 1/"
+                              f"{GOAL_SCALING_TABLE4} of the paper's Table 4") +
                      "One step of dt = 1, \\|g\\| < 1e-7, the cells and solvers as for the "
                      "trampoline. The cloth falls far from its flat start, so the solves are "
                      "governed by the nonlinearity.\n\n" +
@@ -571,18 +650,39 @@ class Report:
                 if best and t:
                     ratio = number(best["wall_time"]) / t
                     solve, best_solve = number(r.get("solve_time")), number(best.get("solve_time"))
-                    solve_ratio = (f"; its solve {best_solve / solve:.2f}× as long"
-                                   if solve and best_solve else "")
-                    self.headline.append((f"{solver} vs best single-level solver",
-                                          f"{scene}, {dofs:,} dofs",
-                                          f"{best['solver']} takes {ratio:.2f}× its time"
-                                          + solve_ratio))
+                    self.headline_group(
+                        "single-level", "Time: RMTR against the fastest single-level solver",
+                        "Compares the whole-run wall time (setup, solve, output) of an RMTR "
+                        "configuration with the faster converged single-level solver at the "
+                        "same resolution, `tr` (single-level trust region, Dogleg + MUMPS) or "
+                        "`bnls-mumps` (TAO's line-search Newton + MUMPS): different solvers, "
+                        "the same step and tolerance (see *RMTR at scale*). Ratio: the "
+                        "single-level solver's time / RMTR's, for the whole run and for the "
+                        "Solve stage alone (above 1: RMTR is faster).",
+                        ["scene", "dofs", "RMTR", "single-level solver",
+                         "whole-run time, single-level / RMTR",
+                         "Solve-stage time, single-level / RMTR"]).append(
+                        [scene, f"{dofs:,}", solver, best["solver"], f"{ratio:.2f}×",
+                         f"{best_solve / solve:.2f}×" if solve and best_solve else ""])
                     if solver == own:
                         self.goals.append((f"{name} {where}", against(ratio, goal),
                                            ratio >= goal))
                 elif solver == own:
                     self.goals.append((f"{name} {where}", "no converged run to compare"
                                        if best else "no single-level solver converged", False))
+
+    def reproduce(self):
+        """The commands that filled this folder (meta.json), with their dates and builds."""
+        runs = self.meta.get("runs", [])
+        listed = "".join(f"- `{r['command']}` ({r['date']}, {r['elapsed']:.0f} s"
+                         + (f", build {r['build']}" if r.get("build") else "") + ")\n"
+                         for r in runs) or "No meta.json: the commands were not recorded.\n"
+        return ("## Reproduce\n\nEach command added its studies' CSV files to this folder "
+                "(a later run's rows replace the same cases' rows), with its date, its "
+                "duration and, where recorded, the mlshell build that ran it; "
+                "[Provenance](#provenance) gives the build of every row. "
+                "`examples/studies/studies.py --report-only --out DIR` redraws this report "
+                "from DIR's CSV files.\n\n" + listed)
 
     def provenance(self):
         """Which mlshell build measured each CSV's rows (their PROVENANCE column)."""
@@ -595,31 +695,41 @@ class Report:
                 builds[build] = builds.get(build, 0) + 1
             listed = sorted(builds.items(), key=lambda b: (b[0] == "not recorded", -b[1]))
             body.append([path.name, len(rows), ", ".join(f"{b} ({n})" for b, n in listed)])
-        if body:
-            self.add("## Provenance\n\nThe mlshell build (`mlshell --version`, `summary.json` "
-                     "`build.commit`; `-modified`: with uncommitted changes) that measured each "
-                     "file's rows, with their number. Rows from before 2026-12-05 did not record "
-                     "it; meta.json lists the commands and dates.\n\n" +
-                     table(["file", "rows", "builds (rows)"], body))
+        if not body:
+            return None
+        return ("## Provenance\n\nThe mlshell build (`mlshell --version`, `summary.json` "
+                "`build.commit`; `-modified`: with uncommitted changes) that measured each "
+                "file's rows, with their number. Rows from before 2026-12-05 did not record "
+                "it; [Reproduce](#reproduce) lists the commands and dates.\n\n" +
+                table(["file", "rows", "builds (rows)"], body))
+
+    def introduction(self):
+        """The title and what the studies are: the two sentences before the headline."""
+        m = self.meta
+        where = (f"Measured in {m['mode']} mode on {m.get('ranks', '?')} MPI ranks of a "
+                 f"{m.get('cores', '?')}-core machine" if m.get("mode") else
+                 "Mode, ranks and cores were not recorded (no meta.json)")
+        return ("# mlshell convergence studies\n\n"
+                "mlshell's RMTR (recursive multilevel trust region) solver on the paper's four "
+                "cloth scenes, compared with the paper's tables and figures "
+                "(rmtr-subdivision-cloth §7) and with single-level solvers (single-level TR, "
+                f"PETSc's TAO and SNES Newton solvers). {where}; the commands, dates and builds "
+                "are at the end ([Reproduce](#reproduce), [Provenance](#provenance)).\n")
+
+    def headline_text(self):
+        groups = sorted((g for g in self.headline.items() if g[1]["rows"]),
+                        key=lambda g: HEADLINE_ORDER.index(g[0]) if g[0] in HEADLINE_ORDER
+                        else len(HEADLINE_ORDER))
+        if not groups:
+            return "## Headline\n\nNo study produced a headline figure.\n"
+        return "## Headline\n\n" + "\n".join(
+            f"### {g['title']}\n\n{g['compares']}\n\n" + table(g["header"], g["rows"])
+            for _, g in groups)
 
     def write(self):
         for study in (self.iterations, self.work, self.projection, self.condition,
-                      self.timestep, self.accuracy, self.peers, self.parallel, self.scaling,
-                      self.provenance):
+                      self.timestep, self.accuracy, self.peers, self.parallel, self.scaling):
             study()
-        m = self.meta
-        runs = m.get("runs", [])
-        head = ["# mlshell convergence studies\n",
-                f"Mode: **{m.get('mode', '?')}**, {m.get('ranks', '?')} MPI ranks, "
-                f"{m.get('cores', '?')} cores. Reproduce (each command adds its studies' CSV "
-                "files to this folder; the build that ran it, where recorded, and under "
-                "Provenance the build of every row):\n\n" +
-                "".join(f"- `{r['command']}` ({r['date']}, {r['elapsed']:.0f} s"
-                        + (f", build {r['build']}" if r.get("build") else "") + ")\n"
-                        for r in runs)]
-        head.append("## Headline\n\n" + (table(["measure", "case", "value"], self.headline)
-                                         if self.headline else "No study produced a headline "
-                                         "figure.\n"))
         goals = [[g, v, "met" if ok else "**not met**"] for g, v, ok in self.goals]
         if not any("PETSc" in g for g, _, _ in self.goals):
             goals.append([f"RMTR ≥ {GOAL_SPEEDUP_PEERS:g}× faster than the best PETSc solver at "
@@ -627,8 +737,12 @@ class Report:
         if not any("ranks" in g for g, _, _ in self.goals):
             goals.append([f"2 ranks ≥ {GOAL_SPEEDUP_RANKS}× faster than 1 at {GOAL_DOFS:,} dofs",
                           "not measured in this run", ""])
-        head.append("## Performance goals\n\n" + table(["goal", "measured", ""], goals))
-        text = "\n".join(head + self.parts)
+        # First what the studies are and what they found; the studies; last how the folder
+        # was filled (commands, builds), which a reader of the results needs least.
+        head = [self.introduction(), self.headline_text(),
+                "## Performance goals\n\n" + table(["goal", "measured", ""], goals)]
+        tail = [part for part in (self.reproduce(), self.provenance()) if part]
+        text = "\n".join(head + self.parts + tail)
         tmp = self.out / "REPORT.md.tmp"
         tmp.write_text(text)
         tmp.replace(self.out / "REPORT.md")

@@ -102,15 +102,24 @@ def check(out, build):
         data = (out / plot).read_bytes() if (out / plot).is_file() else b""
         if not data.startswith(b"\x89PNG"):
             fail(f"{plot} is missing or not a PNG")
-    report = (out / "REPORT.md").read_text()
-    for heading in ("## Headline", "## Performance goals", "Table 3", "Table 4", "Tables 6–7",
-                    "Table 8", "Figure 9", "Figure 10", "## Accuracy vs time",
-                    "## RMTR vs PETSc", "## Parallel", "## RMTR at scale"):
-        if heading not in report:
-            fail(f"REPORT.md has no section '{heading}'")
-    for plot in PLOTS:
-        if f"]({plot})" not in report:
-            fail(f"REPORT.md does not show {plot}")
+    problems = report_problems((out / "REPORT.md").read_text())
+    if problems:
+        fail("REPORT.md: " + "; ".join(problems))
+
+
+def report_problems(report):
+    """What is wrong with a REPORT.md of every study: a section or plot missing, or the
+    sections out of order (the headline first, the commands and builds last)."""
+    problems = [f"no section '{heading}'" for heading in (
+        "## Headline", "## Performance goals", "Table 3", "Table 4", "Tables 6–7", "Table 8",
+        "Figure 9", "Figure 10", "## Accuracy vs time", "## RMTR vs PETSc", "## Parallel",
+        "## RMTR at scale", "## Reproduce", "## Provenance") if heading not in report]
+    problems += [f"does not show {plot}" for plot in PLOTS if f"]({plot})" not in report]
+    headings = [line[3:] for line in report.splitlines() if line.startswith("## ")]
+    if headings[:2] != ["Headline", "Performance goals"] or \
+            headings[-2:] != ["Reproduce", "Provenance"]:
+        problems.append(f"sections out of order: {headings}")
+    return problems
 
 
 def main(argv):

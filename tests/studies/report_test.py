@@ -2,6 +2,7 @@
 """Unit tests of the study tools that need no solver: the L2 distance of two sampled limit
 surfaces, the Pareto front, the -log_view parser, and REPORT.md built from known CSV rows."""
 import csv
+import json
 import math
 import sys
 import tempfile
@@ -13,13 +14,16 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "examples" / "studi
 import report  # noqa: E402
 import studies  # noqa: E402
 from context import Context, read_csv  # noqa: E402
+from solvers import SOLVERS  # noqa: E402
 from plots import pareto_front  # noqa: E402
 from runner import parse_log_view, solver_fields  # noqa: E402
 from study_accuracy import l2_distance  # noqa: E402
 from study_scaling import too_big  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from quick_outputs import failed_runs  # noqa: E402
+from quick_outputs import failed_runs, report_problems  # noqa: E402
+
+RESULTS = Path(__file__).resolve().parents[2] / "examples" / "studies" / "results"
 
 
 def unit_square_elements(n, displacement):
@@ -109,6 +113,24 @@ def write(folder, name, rows):
             w.writerow({c: r.get(c, "") for c in columns})
 
 
+def section(text, heading):
+    """The `## heading` section of a report, up to the next `## ` heading."""
+    return text.split(f"\n## {heading}\n", 1)[1].split("\n## ", 1)[0]
+
+
+def headline_groups(text):
+    """The headline's groups as (title, compares, header, rows): each a `### ` title, the
+    sentence that says what it compares, and its table."""
+    groups = []
+    for block in section(text, "Headline").split("\n### ")[1:]:
+        title, rest = block.split("\n", 1)
+        paragraphs = [p for p in rest.strip().split("\n\n") if p]
+        lines = [line for line in paragraphs[1].splitlines()]
+        cells = [[c.strip() for c in line.strip("|").split("|")] for line in lines]
+        groups.append((title, paragraphs[0], cells[0], cells[2:]))
+    return groups
+
+
 def run_row(scene, dofs, iterations, converged=1, **extra):
     return {"scene": scene, "dofs": dofs, "iterations": iterations, "converged": converged,
             "reason": "CONVERGED_GATOL" if converged else "DIVERGED_TR_REDUCTION",
@@ -176,7 +198,9 @@ class ReportFromKnownRows(unittest.TestCase):
                       "V-cycle;", text)
         self.assertNotIn("per V-cycle", text.split("(trampoline, rmtr-patch) |")[1].split("\n")[0])
         self.assertIn("| 4.00 |", text)  # bntr-gamg: 40 s / 10 s
-        self.assertIn("bntr-gamg takes 4.00× rmtr's time", text)  # the failed bnls is not "best"
+        # The failed bnls is not "best"; the headline names both solvers it compares.
+        self.assertIn("| trampoline | 51,483 | rmtr | bntr-gamg | 4.00× |",
+                      section(text, "Headline"))
         self.assertIn("| 4.00× | met |", text)
         self.assertRegex(text, r"\| 1\.25×; RMTR on 2 ranks: [^|]*Solve 14 s \| \*\*not met\*\* \|")
         # Rows without a solver are the default's; each configuration has its own goal row.
@@ -222,7 +246,8 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| 5 | 51,483 | 2 · 15 s · 1,040 MiB | 8 · 10 s · 864 MiB |", text)
         self.assertIn("timeout after 900 s", text)
         # The failed bnls run is not the best single-level solver: TR's 16 s is.
-        self.assertIn("tr takes 1.60× its time", text)
+        self.assertIn("| trampoline | 51,483 | rmtr-patch | tr | 1.60× |",
+                      section(text, "Headline"))
         self.assertIn("| 1.60× | **not met** |", text)
         self.assertIn("no single-level solver converged | **not met** |", text)
         self.assertIn("| 8, 25 | **not met** |", text)  # 25 > 20 V-cycles at 201,243 dofs
@@ -244,7 +269,8 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("RMTR at scale on free-hanging cloth: drooping", text)
         self.assertIn("| 5 | 51,483 | 11 · 109 s · 900 MiB | 400 · 2 s · 400 MiB |", text)
         self.assertIn("| 5 | 51,483 | 1 · 10 s · 300 MiB | 9 · 25 s · 450 MiB |", text)
-        self.assertIn("tr takes 2.50× its time", text)
+        self.assertIn("| trampoline | 51,483 | rmtr-patch | tr | 2.50× |",
+                      section(text, "Headline"))
         self.assertIn("](scaling_drooping.png)", text)
         self.assertTrue((self.out / "scaling_drooping.png").exists())
 
@@ -288,7 +314,8 @@ class ReportFromKnownRows(unittest.TestCase):
             run_row("trampoline", 51483, 1, solver="rmtr-patch", wall_time=3.0),
             run_row("trampoline", 51483, 7, solver="bnls-mumps", wall_time=12.0)])
         text = self.build()
-        self.assertIn("bnls-mumps takes 4.00× rmtr-patch's time", text)
+        self.assertIn("| trampoline | 51,483 | rmtr-patch | bnls-mumps | 4.00× |",
+                      section(text, "Headline"))
         self.assertIn("| rmtr-patch ≥ 3× faster than the best PETSc solver at 51,483 dofs "
                       "(trampoline) | 4.00× | met |", text)
         self.assertIn("| trampoline | 51,483 | rmtr | 4 | 1 |  | 1.33 |", text)
@@ -331,6 +358,120 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| 2 | 1.000e-05 |", front)
         self.assertNotIn("| 3 | 1.000e-04 |", front)  # dominated by rmtr at 2 s
         self.assertTrue((self.out / "accuracy_trampoline.png").is_file())
+
+
+class ReportOrder(unittest.TestCase):
+    """A newcomer reads what the studies are, then the headline, then the studies; the commands
+    and builds that filled the folder come last. Every headline row says what it compares."""
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.out = Path(self.dir.name)
+        write(self.out, "iterations", [
+            run_row("trampoline", 363, 3, solver="rmtr-patch-dogleg", levels=2, refine=1),
+            run_row("drooping", 363, 10, solver="rmtr-patch-dogleg", levels=2, refine=1),
+            run_row("trampoline", 147, 12, solver="tr", levels=1, refine=0)])
+        write(self.out, "peers", [
+            run_row("trampoline", 51483, 1, solver="rmtr-patch", wall_time=3.0),
+            run_row("trampoline", 51483, 7, solver="bnls-mumps", wall_time=12.0)])
+        write(self.out, "parallel", [
+            run_row("trampoline", 51483, 1, refine=5, ranks=1, wall_time=19.0, stage_solve=9.0,
+                    solver="rmtr-patch"),
+            run_row("trampoline", 51483, 1, refine=5, ranks=2, wall_time=10.0, stage_solve=4.5,
+                    solver="rmtr-patch")])
+        write(self.out, "scaling", [
+            run_row("trampoline", 51483, 1, solver="rmtr-patch", refine=5, wall_time=10.0,
+                    solve_time=8.0, peak_rss_mib=300),
+            run_row("trampoline", 51483, 9, solver="tr", refine=5, wall_time=25.0,
+                    solve_time=24.0, peak_rss_mib=450)])
+        (self.out / "meta.json").write_text(json.dumps({
+            "mode": "full", "ranks": 2, "cores": 2,
+            "runs": [{"command": "examples/studies/studies.py --full --only scaling",
+                      "date": "2026-12-06T03:16:59", "elapsed": 877.0, "build": "06682cb"}]}))
+        self.text = report.Report(self.out).write().read_text()
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_title_and_what_the_studies_are_then_the_headline(self):
+        intro = self.text.split("\n## ", 1)[0]
+        self.assertTrue(intro.startswith("# mlshell convergence studies\n"))
+        self.assertIn("paper's tables", intro)
+        self.assertIn("single-level solvers", intro)
+        self.assertIn("2 MPI ranks of a 2-core machine", intro)
+        self.assertLessEqual(len([line for line in intro.splitlines() if line.strip()]), 3)
+        self.assertTrue(self.text.split("\n## ", 1)[1].startswith("Headline\n"))
+        self.assertNotIn("studies.py --full", intro)
+
+    def test_sections_in_order_and_the_commands_and_builds_last(self):
+        headings = [line[3:] for line in self.text.splitlines() if line.startswith("## ")]
+        self.assertEqual(headings[:2], ["Headline", "Performance goals"])
+        self.assertEqual(headings[-2:], ["Reproduce", "Provenance"])
+        studies = headings[2:-2]
+        self.assertEqual(studies[0], "Tables 3–5: iterations per step, dt = 1")
+        self.assertIn("RMTR at scale: V-cycles, time and memory against resolution", studies)
+        # The commands, their dates and builds appear only under Reproduce; each row's build
+        # only under Provenance.
+        before, after = self.text.split("\n## Reproduce\n")
+        self.assertNotIn("--only scaling", before)
+        self.assertIn("- `examples/studies/studies.py --full --only scaling` "
+                      "(2026-12-06T03:16:59, 877 s, build 06682cb)", after)
+        self.assertNotIn("| scaling.csv |", before)
+        self.assertIn("| scaling.csv | 2 | not recorded (2) |", section(self.text, "Provenance"))
+
+    def test_each_study_section_says_what_it_measures_against_what(self):
+        headings = [line[3:] for line in self.text.splitlines() if line.startswith("## ")]
+        for heading in headings[2:-2]:
+            first = section(self.text, heading).strip().split("\n\n")[0]
+            self.assertRegex(first, r"^\*\*Measures\*\* .+, \*\*against\*\* .+\.$", heading)
+
+    def test_each_headline_row_names_what_it_compares(self):
+        groups = {title: (compares, header, rows)
+                  for title, compares, header, rows in headline_groups(self.text)}
+        self.assertEqual(list(groups), [
+            "V-cycles: mlshell's default (`rmtr-patch-dogleg`) against the paper's Table 4",
+            "Time: RMTR against the fastest single-level solver",
+            "Time: RMTR against PETSc's solvers",
+            "Parallel: 2 MPI ranks against 1"])
+        for title, (compares, header, rows) in groups.items():
+            self.assertTrue(compares.startswith("Compares "), title)
+            self.assertTrue(rows, title)
+            if "RMTR" in header:
+                # Different solvers on each side: each row names both.
+                other = next(i for i, h in enumerate(header) if h.endswith("solver"))
+                for row in rows:
+                    mine, theirs = row[header.index("RMTR")], row[other]
+                    self.assertTrue(mine in SOLVERS and theirs in SOLVERS and mine != theirs,
+                                    f"{title}: {row}")
+            elif "solver" in header:
+                # One solver against itself: the row names it, the sentence says so.
+                self.assertIn("with itself", compares)
+                for row in rows:
+                    self.assertTrue(row[header.index("solver")] in SOLVERS, f"{title}: {row}")
+            else:
+                # mlshell's solver against the paper's: the sentence names both, each cell
+                # holds both numbers.
+                self.assertIn("`rmtr-patch-dogleg`", compares)
+                self.assertIn("the paper's own RMTR configuration", compares)
+                self.assertEqual(header, ["scene", "2 levels"])
+                for row in rows:
+                    self.assertTrue(all(" / " in cell for cell in row[1:]), row)
+        self.assertEqual(groups["V-cycles: mlshell's default (`rmtr-patch-dogleg`) against the "
+                                "paper's Table 4"][2],
+                         [["trampoline", "3 / 633 (363)"], ["drooping", "10 / 4,671 (363)"]])
+        self.assertEqual(groups["Time: RMTR against the fastest single-level solver"][2],
+                         [["trampoline", "51,483", "rmtr-patch", "tr", "2.50×", "3.00×"]])
+        self.assertEqual(groups["Time: RMTR against PETSc's solvers"][2],
+                         [["trampoline", "51,483", "rmtr-patch", "bnls-mumps", "4.00×"]])
+        self.assertEqual(groups["Parallel: 2 MPI ranks against 1"][2],
+                         [["trampoline", "rmtr-patch", "1.90×"]])
+
+
+class CommittedReport(unittest.TestCase):
+    def test_the_committed_report_has_every_section_in_order(self):
+        # The check quick_outputs.py makes of a quick run's report, on the committed one
+        # (examples/studies/studies.py --report-only --out examples/studies/results).
+        self.assertEqual(report_problems((RESULTS / "REPORT.md").read_text()), [])
 
 
 class CsvMerge(unittest.TestCase):
