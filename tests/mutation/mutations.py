@@ -97,7 +97,7 @@ MUTATIONS = [
      "the default coarsest level is factorised by MUMPS distributed over the ranks, which "
      "varies from run to run (-tao_rmtr_coarse_redundant ignored)", ()),
     ("default-retries-dropped", "solvers/step_solver.cpp",
-     '                                                 {"rmtr_retries", "3"},\n', "",
+     '                                      {"rmtr_retries", "3"},\n', "",
      "mlshell's default no longer matches petsc-options/rmtr-patch-dogleg.yaml, which claims "
      "to spell it out", ()),
     ("factorisations-uncounted", "solvers/trust_region_qp.cpp",
