@@ -351,6 +351,18 @@ MUTATIONS = [
      "last_shift_ > 0 ? last_shift_ / 10 : 1e-10 * norm",
      "last_shift_ > 0 ? last_shift_ : 1e-10 * norm",
      "the shift search starts at the last shift, so it never comes down", ()),
+    ("unused-options-silent", "src/cli/main.cpp",
+     '    std::cerr << "mlshell: warning: " << mlshell::describe(o) << std::endl;\n', "",
+     "a misspelt option (-tao_rmtr_smoothr_qp) goes unreported after the run", ()),
+    ("default-check-reads-option", "solvers/step_solver.cpp",
+     "    PetscCall(option_given(option, &set));",
+     "    PetscCall(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &set));",
+     "an options file's key that the chosen solver ignores counts as read once mlshell checked "
+     "it for its default (-tao_rmtr_smoother_qp under -tao_type tr)", ()),
+    ("output-folder-raw-error", "src/simulation/simulation.cpp",
+     "  create_output_folder(comm, output_->dir);",
+     "  if (rank_ == 0) std::filesystem::create_directories(output_->dir);",
+     "an output folder that cannot be created exits 2 with a raw filesystem error, not 4", ()),
 ]
 
 
