@@ -37,6 +37,25 @@ PetscErrorCode hessian_jacobian(SNES, Vec u, Mat H, Mat, void* ctx) {
   return static_cast<Objective*>(ctx)->hessian(u, H);
 }
 
+/// Whether the user set `option`, without counting as reading it: a default's check is no
+/// read, so that an option the chosen solver then ignores is still reported as never used
+/// (unused_options.hpp). PETSc marks an option read when it finds it; one that nothing had read
+/// before is set again, unread.
+PetscErrorCode option_given(const std::string& option, PetscBool* set) {
+  PetscBool read_before;
+  const char* value = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsUsed(nullptr, option.c_str() + 1, &read_before));
+  PetscCall(PetscOptionsFindPair(nullptr, nullptr, option.c_str(), &value, set));
+  if (*set && !read_before) {
+    const bool has_value = value != nullptr;
+    const std::string kept = has_value ? value : "";
+    PetscCall(PetscOptionsClearValue(nullptr, option.c_str()));
+    PetscCall(PetscOptionsSetValue(nullptr, option.c_str(), has_value ? kept.c_str() : nullptr));
+  }
+  PetscFunctionReturn(0);
+}
+
 /// Sets each option `prefix + name` to its value unless the user already gave it (the command
 /// line wins).
 PetscErrorCode default_options(
@@ -46,49 +65,142 @@ PetscErrorCode default_options(
   for (const auto& [name, value] : defaults) {
     const std::string option = prefix + name;
     PetscBool set;
-    PetscCall(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &set));
+    PetscCall(option_given(option, &set));
     if (!set) PetscCall(PetscOptionsSetValue(nullptr, option.c_str(), value));
   }
   PetscFunctionReturn(0);
 }
 
-/// -mlshell_force_rtol, listed by -help.
-PetscErrorCode force_rtol_option(MPI_Comm comm, PetscReal* value) {
+/// The group "mlshell: step solver"; the default of -mlshell_hessian_psd follows the type.
+PetscErrorCode read_step_solver_options(MPI_Comm comm, StepSolverOptions* o, char* kind,
+                                        size_t kind_size) {
+  PetscBool psd_given = PETSC_FALSE, psd = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, nullptr, "mlshell step solver", "");
+  PetscOptionsBegin(comm, nullptr, "mlshell: step solver", "");
+  PetscCall(PetscOptionsString("-mlshell_step_solver",
+                               "tao: minimise f with TAO (-tao_type, default rmtr); snes: solve "
+                               "grad f = 0 with SNES (newtonls, MUMPS LU; -snes_*, -ksp_*, -pc_*)",
+                               "", kind, kind, kind_size, nullptr));
+  PetscCall(PetscOptionsBool("-mlshell_hessian_psd",
+                             "project every non-convex element Hessian onto the PSD cone "
+                             "(default: on for -tao_type pnewton, off otherwise)",
+                             "", psd, &psd, &psd_given));
   PetscCall(PetscOptionsReal("-mlshell_force_rtol",
                              "gradient tolerance relative to the external forces: "
                              "|g| < max(-tao_gatol, this * |f_ext|)",
-                             "", *value, value, nullptr));
+                             "", o->force_rtol, &o->force_rtol, nullptr));
   PetscOptionsEnd();
+  o->snes = std::string(kind) == "snes";
+  if (o->snes) {
+    o->type = "snes";
+  } else {
+    char type[256] = "rmtr";
+    PetscCall(PetscOptionsGetString(nullptr, nullptr, "-tao_type", type, sizeof type, nullptr));
+    o->type = type;
+  }
+  o->hessian_psd = psd_given ? static_cast<bool>(psd) : hessian_projection_default(o->type);
+  PetscFunctionReturn(0);
+}
+
+/// mlshell's defaults for a SNES step solver.
+PetscErrorCode snes_defaults() {
+  return default_options("-", {{"snes_type", "newtonls"},
+                               {"snes_atol", "1e-7"},
+                               {"snes_rtol", "1e-10"},
+                               {"snes_stol", "0"},
+                               {"snes_max_it", "1000"},
+                               {"snes_max_funcs", "1000000"},
+                               {"ksp_type", "preonly"},
+                               {"pc_type", "lu"},
+                               {"pc_factor_mat_solver_type", "mumps"}});
+}
+
+/// mlshell's defaults for a TAO step solver. RMTR's own defaults are the paper's (ten STCG
+/// iterations per smoothing step), which stall on cloth (petsc-options/rmtr-paper.yaml).
+/// mlshell's default smooths with Dogleg steps whose Newton point comes from
+/// vertex-patch-preconditioned CG (no factorisation above the coarsest level), with Galerkin
+/// coarse models, subspace steps and retried smoothing steps after the full-multigrid start:
+/// faster than factorised Dogleg smoothing on every scene measured from 13,467 dofs up (within
+/// 6 % below), the fastest on free-hanging cloth but for one resolution, second on the nearly
+/// linear trampoline, whose scene names rmtr-patch.yaml (README, Solver;
+/// petsc-options/rmtr-patch-dogleg.yaml is this default spelled out, rmtr.yaml the factorised
+/// Dogleg smoothing that was the default before). Options files state what they change.
+PetscErrorCode tao_defaults() {
+  PetscFunctionBeginUser;
+  PetscCall(default_options("-tao_", {{"type", "rmtr"},
+                                      {"gatol", "1e-7"},
+                                      {"gttol", "1e-10"},
+                                      {"grtol", "0"},
+                                      {"max_it", "1000"},
+                                      {"rmtr_smoother_qp", "dogleg"},
+                                      {"rmtr_smoother_pc", "vpatch"},
+                                      {"rmtr_stcg_max_it", "60"},
+                                      {"rmtr_newton_rtol", "1e-2"},
+                                      {"rmtr_coarse_model", "galerkin"},
+                                      {"rmtr_subspace", "5"},
+                                      {"rmtr_retries", "3"},
+                                      {"rmtr_stagnation_window", "6"}}));
+  PetscCall(register_trust_region_tao_types());
+  PetscCall(register_newton_baseline_tao_types());
+  PetscCall(register_projected_newton_tao_type());
+  PetscFunctionReturn(0);
+}
+
+/// Newton-type TAO solvers own a KSP whose prefix depends on the type (tao_bnk_, tao_nls_, ...):
+/// default it to Steihaug–Toint CG with a direct factorisation unless the user chose otherwise.
+PetscErrorCode ksp_defaults(KSP ksp) {
+  const char* prefix = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  PetscCall(default_options(std::string("-") + (prefix ? prefix : ""),
+                            {{"ksp_type", "stcg"},
+                             {"pc_type", "lu"},
+                             {"pc_factor_mat_solver_type", "mumps"}}));
   PetscFunctionReturn(0);
 }
 
 }  // namespace
 
-bool uses_snes() {
-  char kind[64] = "tao";
-  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetString(nullptr, nullptr, "-mlshell_step_solver",
-                                                         kind, sizeof kind, nullptr));
-  const std::string k = kind;
-  if (k != "tao" && k != "snes")
-    throw std::invalid_argument("-mlshell_step_solver: must be tao or snes; got '" + k + "'");
-  return k == "snes";
-}
-
-bool hessian_projection_option(const std::string& solver_type) {
+bool hessian_projection_default(const std::string& solver_type) {
   PetscBool on = solver_type == "pnewton" ? PETSC_TRUE : PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_hessian_psd", &on, nullptr));
   return on;
 }
 
-std::string step_solver_type() {
-  if (uses_snes()) return "snes";
-  char type[256] = "rmtr";
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetString(nullptr, nullptr, "-tao_type", type, sizeof type, nullptr));
-  return type;
+StepSolverOptions StepSolverOptions::from_options(MPI_Comm comm) {
+  StepSolverOptions o;
+  char kind[64] = "tao";
+  PetscCallAbort(comm, read_step_solver_options(comm, &o, kind, sizeof kind));
+  const std::string k = kind;
+  if (k != "tao" && k != "snes")
+    throw std::invalid_argument("-mlshell_step_solver: must be tao or snes; got '" + k + "'");
+  if (!(o.force_rtol >= 0.0))
+    throw std::invalid_argument("-mlshell_force_rtol: must be >= 0; got '" +
+                                std::to_string(o.force_rtol) + "'");
+  return o;
+}
+
+PetscErrorCode step_solver_options_help(MPI_Comm comm, const StepSolverOptions& options) {
+  PetscFunctionBeginUser;
+  if (options.snes) {
+    SNES snes;
+    PetscCall(snes_defaults());
+    PetscCall(SNESCreate(comm, &snes));
+    PetscCall(SNESSetFromOptions(snes));
+    PetscCall(SNESDestroy(&snes));
+    PetscFunctionReturn(0);
+  }
+  Tao tao;
+  KSP ksp = nullptr;
+  PetscCall(tao_defaults());
+  PetscCall(TaoCreate(comm, &tao));
+  PetscCall(TaoSetFromOptions(tao));
+  PetscCall(TaoGetKSP(tao, &ksp));
+  if (ksp) {
+    PetscCall(ksp_defaults(ksp));
+    PetscCall(KSPSetFromOptions(ksp));
+  }
+  PetscCall(TaoDestroy(&tao));
+  PetscFunctionReturn(0);
 }
 
 namespace {
@@ -103,19 +215,15 @@ void options_read(PetscErrorCode error, const char* what) {
 
 }  // namespace
 
-StepSolver::StepSolver(Objective& problem, MultilevelObjective* levels) : problem_(problem) {
+StepSolver::StepSolver(Objective& problem, MultilevelObjective* levels,
+                       const StepSolverOptions* options)
+    : problem_(problem) {
   PetscCallAbort(PETSC_COMM_WORLD, problem.create_hessian(&H_));
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(H_));
-  if (uses_snes()) {
-    PetscCallAbort(comm, default_options("-", {{"snes_type", "newtonls"},
-                                               {"snes_atol", "1e-7"},
-                                               {"snes_rtol", "1e-10"},
-                                               {"snes_stol", "0"},
-                                               {"snes_max_it", "1000"},
-                                               {"snes_max_funcs", "1000000"},
-                                               {"ksp_type", "preonly"},
-                                               {"pc_type", "lu"},
-                                               {"pc_factor_mat_solver_type", "mumps"}}));
+  const StepSolverOptions o = options ? *options : StepSolverOptions::from_options(comm);
+  force_rtol_ = o.force_rtol;
+  if (o.snes) {
+    PetscCallAbort(comm, snes_defaults());
     PetscCallAbort(comm, SNESCreate(comm, &snes_));
     PetscCallAbort(comm, MatCreateVecs(H_, &residual_, nullptr));
     PetscCallAbort(comm, SNESSetFunction(snes_, residual_, gradient_residual, &problem_));
@@ -123,58 +231,22 @@ StepSolver::StepSolver(Objective& problem, MultilevelObjective* levels) : proble
     options_read(SNESSetFromOptions(snes_), "SNESSetFromOptions");
     return;
   }
-  // RMTR's own defaults are the paper's (ten STCG iterations per smoothing step), which stall on
-  // cloth (petsc-options/rmtr-paper.yaml). mlshell's default smooths with Dogleg steps whose
-  // Newton point comes from vertex-patch-preconditioned CG (no factorisation above the coarsest
-  // level), with Galerkin coarse models, subspace steps and retried smoothing steps after the
-  // full-multigrid start: faster than factorised Dogleg smoothing on every scene measured from
-  // 13,467 dofs up (within 6 % below), the fastest on free-hanging cloth but for one
-  // resolution, second on the nearly linear trampoline, whose scene names rmtr-patch.yaml
-  // (docs/solvers.md; petsc-options/rmtr-patch-dogleg.yaml is this default spelled out,
-  // rmtr.yaml the factorised Dogleg smoothing that was the default before). Options files
-  // state what they change.
-  PetscCallAbort(comm, default_options("-tao_", {{"type", "rmtr"},
-                                                 {"gatol", "1e-7"},
-                                                 {"gttol", "1e-10"},
-                                                 {"grtol", "0"},
-                                                 {"max_it", "1000"},
-                                                 {"rmtr_smoother_qp", "dogleg"},
-                                                 {"rmtr_smoother_pc", "vpatch"},
-                                                 {"rmtr_stcg_max_it", "60"},
-                                                 {"rmtr_newton_rtol", "1e-2"},
-                                                 {"rmtr_coarse_model", "galerkin"},
-                                                 {"rmtr_subspace", "5"},
-                                                 {"rmtr_retries", "3"},
-                                                 {"rmtr_stagnation_window", "6"}}));
-  PetscCallAbort(comm, register_trust_region_tao_types());
-  PetscCallAbort(comm, register_newton_baseline_tao_types());
-  PetscCallAbort(comm, register_projected_newton_tao_type());
+  PetscCallAbort(comm, tao_defaults());
   PetscCallAbort(comm, TaoCreate(comm, &tao_));
   PetscCallAbort(comm,
                  TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &problem_));
   PetscCallAbort(comm, TaoSetObjective(tao_, objective_only, &problem_));
   PetscCallAbort(comm, TaoSetHessian(tao_, H_, H_, hessian, &problem_));
   options_read(TaoSetFromOptions(tao_), "TaoSetFromOptions");
-  // Newton-type TAO solvers own a KSP whose prefix depends on the type (tao_bnk_, tao_nls_, ...):
-  // default it to Steihaug–Toint CG with a direct factorisation unless the user chose otherwise.
   KSP ksp = nullptr;
   PetscCallAbort(comm, TaoGetKSP(tao_, &ksp));
   if (ksp) {
-    const char* prefix = nullptr;
-    PetscCallAbort(comm, KSPGetOptionsPrefix(ksp, &prefix));
-    PetscCallAbort(comm, default_options(std::string("-") + (prefix ? prefix : ""),
-                                         {{"ksp_type", "stcg"},
-                                          {"pc_type", "lu"},
-                                          {"pc_factor_mat_solver_type", "mumps"}}));
+    PetscCallAbort(comm, ksp_defaults(ksp));
     options_read(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   }
   if (levels && type() == "rmtr") options_read(rmtr_set_levels(tao_, levels), "rmtr_set_levels");
   PetscReal grtol, gttol;
   PetscCallAbort(comm, TaoGetTolerances(tao_, &gatol_, &grtol, &gttol));
-  PetscCallAbort(comm, force_rtol_option(comm, &force_rtol_));
-  if (!(force_rtol_ >= 0.0))
-    throw std::invalid_argument("-mlshell_force_rtol: must be >= 0; got '" +
-                                std::to_string(force_rtol_) + "'");
   PetscCallAbort(comm, trust_region_set_error_source(tao_, &problem_));
 }
 

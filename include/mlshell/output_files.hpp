@@ -24,8 +24,19 @@ namespace mlshell {
 
 class OutputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// `every_rank`: raised identically on every rank, so the run can end without MPI_Abort.
+  explicit OutputError(const std::string& what, bool every_rank = false)
+      : std::runtime_error(what), every_rank_(every_rank) {}
+  bool every_rank() const { return every_rank_; }
+
+ private:
+  bool every_rank_;
 };
+
+/// Rank 0 creates the output folder `dir` (and its parents) and removes the summary.json an
+/// earlier run left there (it must not pass for this run's result). Collective: if rank 0
+/// cannot, every rank throws OutputError("cannot create output folder 'dir': <cause>").
+void create_output_folder(MPI_Comm comm, const std::filesystem::path& dir);
 
 /// Writes `content` to `path` atomically (temporary file + rename). Creates parent folders.
 void write_file_atomic(const std::filesystem::path& path, const std::string& content);

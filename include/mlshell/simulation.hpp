@@ -6,9 +6,6 @@
 //   -mlshell_evaluate            print every enabled effect's energy and the gradient norm at
 //                                the initial state, write summary.json, and exit
 //   -mlshell_gauss_points <3>    Gauss points per direction on each element (2..6)
-//   -mlshell_output_dir <dir>    override the scene's output.dir
-//   -mlshell_steps <n>           override the scene's time.steps
-//   -mlshell_dt <dt>             override the scene's time.dt
 //   -mlshell_quiet               no per-step progress lines
 //   -mlshell_hierarchy_view      print the subdivision levels 0..refine and their transfers
 //   -mlshell_hierarchy_write DIR write each level's cage and limit surface (OBJ) to DIR
@@ -50,6 +47,11 @@ struct SimulationOptions {
   bool condition = false;
   int condition_steps = 60;
   int limit_csv_samples = 0;  ///< 0: no limit_surface.csv
+  /// -mlshell_step_solver, -mlshell_hessian_psd, ...; if empty, the simulation reads them.
+  std::optional<StepSolverOptions> solver;
+  /// Reads the groups "mlshell: simulation", "mlshell: measuring" and "mlshell: step solver"
+  /// (PetscOptionsBegin/End, listed by -help); an invalid value throws SceneError or
+  /// std::invalid_argument naming the option and the value.
   static SimulationOptions from_petsc_options();
 };
 

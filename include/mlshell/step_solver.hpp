@@ -45,20 +45,41 @@ struct SolveReport {
   RmtrStatistics rmtr;              ///< for -tao_type rmtr
 };
 
-/// The solver a StepSolver will use: "snes" with -mlshell_step_solver snes, else the TAO type
-/// (-tao_type if given, else the default "rmtr").
-std::string step_solver_type();
+/// mlshell's options of the step solver, read by one PetscOptionsBegin/End group ("mlshell:
+/// step solver" in -help):
+///   -mlshell_step_solver tao|snes  TAO minimises f (default), SNES solves grad f = 0
+///   -mlshell_hessian_psd           every non-convex element Hessian (membranes, hinges, the
+///                                  shell material) is projected onto the PSD cone before
+///                                  assembly (projected Newton, paper 2 §4.5); default: on for
+///                                  -tao_type pnewton, off otherwise
+///   -mlshell_force_rtol 1e-8       |g| < max(-tao_gatol, this × ‖f_ext‖)
+struct StepSolverOptions {
+  bool snes = false;
+  /// "snes" with -mlshell_step_solver snes, else the TAO type (-tao_type if given, else the
+  /// default "rmtr").
+  std::string type = "rmtr";
+  bool hessian_psd = false;
+  PetscReal force_rtol = 1e-8;
+  /// Reads the group (invalid values: std::invalid_argument naming the option and value).
+  static StepSolverOptions from_options(MPI_Comm comm);
+};
 
-/// -mlshell_hessian_psd: every non-convex element Hessian (membranes, hinges, the shell
-/// material) is projected onto the PSD cone before assembly (projected Newton, paper 2 §4.5).
-/// Default: on for -tao_type pnewton, off otherwise.
-bool hessian_projection_option(const std::string& solver_type);
+/// The default of -mlshell_hessian_psd for a solver type: on for pnewton.
+bool hessian_projection_default(const std::string& solver_type);
+
+/// For `mlshell -help`: the options of the solver that `options` (as read already) choose
+/// (TAO's type, rmtr by default, with mlshell's defaults in place; or SNES), printed by PETSc's
+/// help as a run would read them.
+PetscErrorCode step_solver_options_help(MPI_Comm comm, const StepSolverOptions& options);
 
 class StepSolver {
  public:
   /// Minimises `problem` (which must create its Hessian matrix, Objective::create_hessian);
-  /// `levels` (finest = problem) are given to RMTR if that is the type.
-  explicit StepSolver(Objective& problem, MultilevelObjective* levels = nullptr);
+  /// `levels` (finest = problem) are given to RMTR if that is the type. `options`: mlshell's
+  /// step-solver options as read already (the simulation reads them once), or nullptr to read
+  /// them here.
+  explicit StepSolver(Objective& problem, MultilevelObjective* levels = nullptr,
+                      const StepSolverOptions* options = nullptr);
   ~StepSolver();
   StepSolver(const StepSolver&) = delete;
   StepSolver& operator=(const StepSolver&) = delete;

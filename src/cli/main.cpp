@@ -10,9 +10,11 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <regex>
 #include <string>
 
@@ -20,18 +22,23 @@
 #include "mlshell/output_files.hpp"
 #include "mlshell/scene.hpp"
 #include "mlshell/simulation.hpp"
+#include "mlshell/step_solver.hpp"
+#include "mlshell/unused_options.hpp"
 
 namespace {
 
 const char* kUsage =
     "usage: mlshell SCENE.yaml [PETSc options]\n"
     "       mpirun -n 2 mlshell SCENE.yaml -tao_monitor -log_view\n"
-    "       mlshell --help | --version (mlshell's version, source commit and PETSc version)\n"
+    "       mlshell -help      (every mlshell option and the default solver's, each with its\n"
+    "                           default and a line of description; exits 0)\n"
+    "       mlshell --help     (this text and the scene format)\n"
+    "       mlshell --version  (mlshell's version, source commit and PETSc version)\n"
     "\n"
     "Simulates the thin shell or cloth described by SCENE.yaml and writes its results to the\n"
     "scene's output folder (summary.json, steps.csv, <name>.xdmf + HDF5 frames, frame_*.obj).\n"
     "\n"
-    "mlshell options:\n"
+    "mlshell options (mlshell -help lists them with their defaults):\n"
     "  -mlshell_evaluate           energies of every effect and the gradient norm at the initial\n"
     "                              state; writes summary.json and exits\n"
     "  -mlshell_gauss_points N     Gauss points per direction per element (default 3, 2..6)\n"
@@ -52,11 +59,19 @@ const char* kUsage =
     "                              (K+1)x(K+1) grid per element (reference X,Y,Z; ux,uy,uz)\n"
     "  -mlshell_step_solver snes   solve grad f = 0 with PETSc SNES (default newtonls, MUMPS LU;\n"
     "                              -snes_*, -ksp_*, -pc_* options) instead of TAO\n"
+    "  -mlshell_hessian_psd        project non-convex element Hessians onto the PSD cone\n"
+    "                              (default: on for -tao_type pnewton)\n"
     "  -options_file FILE          PETSc options from FILE (plain or .yaml); the scene may name\n"
     "                              its default one (solver.options_file), which FILE replaces;\n"
     "                              the command line's own options win over both\n"
     "  -mlshell_scene_solver false ignore the scene's solver.options_file (mlshell's built-in\n"
     "                              defaults and the command line only)\n"
+    "  -mlshell_options_left false no warnings about options nothing read. By default, after a\n"
+    "                              run, each option given (command line, options files) that\n"
+    "                              nothing read is named, with the nearest known name:\n"
+    "                              'mlshell: warning: option -tao_rmtr_smoothr_qp (value stcg)\n"
+    "                              was never used; did you mean -tao_rmtr_smoother_qp?'; the\n"
+    "                              list is in summary.json (unused_options) either way\n"
     "\n"
     "Solver options (TAO, prefix -tao_): default -tao_type rmtr, the recursive multilevel trust\n"
     "  region on all levels 0..geometry.refine (petsc-options/rmtr-patch-dogleg.yaml): Dogleg\n"
@@ -93,9 +108,13 @@ const char* kUsage =
     "Environment: MLSHELL_HUGE_PAGES=0 keeps glibc's malloc off transparent huge pages (by\n"
     "default mlshell restarts itself once with GLIBC_TUNABLES=glibc.malloc.hugetlb=1).\n"
     "\n"
-    "Exit status: 0 success, 2 invalid input, 3 a step did not converge, 4 cannot write output.\n"
+    "Exit status: 0 success (also -help, --help, --version; unused options are warnings),\n"
+    "  1 usage (no scene), 2 invalid input (scene, mesh, option values), 3 a step did not\n"
+    "  converge (results up to that step are written, summary.json says so), 4 output failure\n"
+    "  (the output folder or a result file cannot be written).\n"
     "\n";
 
+/// `--help` or `-h`: the usage and the scene format, without PETSc.
 bool wants_help(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return true;
@@ -105,6 +124,14 @@ bool wants_help(int argc, char** argv) {
 bool wants_version(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--version")) return true;
+  return false;
+}
+
+/// `-help` (PETSc's): with a scene, a run whose options PETSc lists as it reads them; without
+/// one, the list alone (print_options_help).
+bool wants_petsc_help(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "-help")) return true;
   return false;
 }
 
@@ -152,15 +179,79 @@ const char* command_line_options_file(int argc, char** argv) {
   return nullptr;
 }
 
+/// The command line's options of mlshell: the scene's overrides, its solver file, the report of
+/// unused options.
+struct CommandLineOptions {
+  PetscBool scene_solver = PETSC_TRUE;
+  std::optional<std::string> output_dir;
+  PetscInt steps = 1, refine = 0;
+  PetscReal dt = 1.0;
+  std::optional<std::string> material_csv;
+  PetscBool options_left = PETSC_TRUE;
+};
+
+/// The group "mlshell: command line": read once the scene is parsed (its values are the
+/// defaults) and before its solver.options_file is (which therefore cannot set these). Invalid
+/// values throw SceneError naming the option and the value.
+PetscErrorCode command_line_options(const mlshell::Scene& scene, CommandLineOptions* o) {
+  char dir[PETSC_MAX_PATH_LEN], table[PETSC_MAX_PATH_LEN] = "";
+  PetscBool has_dir = PETSC_FALSE, has_table = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  std::snprintf(dir, sizeof dir, "%s", scene.output.dir.c_str());
+  o->steps = scene.time.steps;
+  o->dt = scene.time.dt;
+  o->refine = scene.geometry.refine;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "mlshell: command line (scene overrides)", "");
+  PetscCall(PetscOptionsBool("-mlshell_scene_solver",
+                             "read the scene's solver.options_file (false: mlshell's built-in "
+                             "solver defaults and the command line only)",
+                             "", o->scene_solver, &o->scene_solver, nullptr));
+  PetscCall(PetscOptionsString("-mlshell_output_dir", "output folder (overrides output.dir)", "",
+                               dir, dir, sizeof dir, &has_dir));
+  PetscCall(PetscOptionsInt("-mlshell_steps", "time steps, >= 1 (overrides time.steps)", "",
+                            o->steps, &o->steps, nullptr));
+  PetscCall(PetscOptionsReal("-mlshell_dt", "time step, > 0 (overrides time.dt)", "", o->dt,
+                             &o->dt, nullptr));
+  PetscCall(PetscOptionsInt("-mlshell_refine",
+                            "subdivision refinements 0..8 (overrides geometry.refine)", "",
+                            o->refine, &o->refine, nullptr));
+  PetscCall(PetscOptionsString("-mlshell_material_csv",
+                               "write the scene's material as tables to this file and exit (no "
+                               "mesh, no solve)",
+                               "", table, table, sizeof table, &has_table));
+  PetscCall(PetscOptionsBool("-mlshell_options_left",
+                             "after the run, warn about every option given that nothing read "
+                             "(with a did-you-mean)",
+                             "", o->options_left, &o->options_left, nullptr));
+  PetscOptionsEnd();
+  if (has_dir) o->output_dir = dir;
+  if (has_table) o->material_csv = table;
+  if (o->steps < 1)
+    throw mlshell::SceneError("-mlshell_steps: must be >= 1; got '" + std::to_string(o->steps) +
+                              "'");
+  if (!(o->dt > 0.0) || !std::isfinite(o->dt))
+    throw mlshell::SceneError("-mlshell_dt: must be a positive number; got '" +
+                              std::to_string(o->dt) + "'");
+  if (o->refine < 0 || o->refine > 8)
+    throw mlshell::SceneError("-mlshell_refine: must be in 0..8; got '" +
+                              std::to_string(o->refine) + "'");
+  PetscFunctionReturn(0);
+}
+
+/// The scene with the command line's overrides.
+void apply_overrides(const CommandLineOptions& o, mlshell::Scene& scene) {
+  if (o.output_dir) scene.output.dir = *o.output_dir;
+  scene.time.steps = static_cast<int>(o.steps);
+  scene.time.dt = o.dt;
+  scene.geometry.refine = static_cast<int>(o.refine);
+}
+
 /// The scene's solver.options_file sets the scene's default solver. It is read unless the
 /// command line names its own options file (which replaces it, so that two configurations are
 /// never mixed) or says -mlshell_scene_solver false; the command line is inserted again after
 /// it so that its options win. Afterwards scene.solver.options_file names the file whose
 /// options are in effect (for summary.json).
-void apply_scene_solver_file(mlshell::Scene& scene, int argc, char** argv) {
-  PetscBool use_scene = PETSC_TRUE;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetBool(nullptr, nullptr, "-mlshell_scene_solver",
-                                                       &use_scene, nullptr));
+void apply_scene_solver_file(mlshell::Scene& scene, PetscBool use_scene, int argc, char** argv) {
   if (const char* file = command_line_options_file(argc, argv)) {
     scene.solver.options_file = std::filesystem::path(file);
     return;
@@ -171,6 +262,43 @@ void apply_scene_solver_file(mlshell::Scene& scene, int argc, char** argv) {
                  PetscOptionsInsertFile(PETSC_COMM_WORLD, nullptr,
                                         scene.solver.options_file->c_str(), PETSC_TRUE));
   PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsInsert(nullptr, &argc, &argv, nullptr));
+}
+
+/// Rank 0 warns about each option given that nothing read (unused_options.hpp), and says
+/// where those not on the command line came from when an options file is in effect.
+void report_unused_options(int rank, bool solver_built,
+                           const std::optional<std::filesystem::path>& options_file) {
+  if (rank != 0) return;
+  int from_file = 0;
+  for (const mlshell::UnusedOption& o : mlshell::unused_options(solver_built)) {
+    std::cerr << "mlshell: warning: " << mlshell::describe(o) << std::endl;
+    from_file += !o.on_command_line;
+  }
+  if (from_file > 0 && options_file)
+    std::cerr << "mlshell: note: " << from_file << " of these options come from the options "
+              << "file in effect, '" << options_file->string()
+              << "' (or PETSC_OPTIONS); -mlshell_options_left false silences these warnings"
+              << std::endl;
+}
+
+/// `mlshell -help` without a scene: the usage, then every option group as a run reads them
+/// (PETSc's help prints each option with its default and description as it is read): the
+/// command line's, the simulation's, the step solver's and the solver it chooses (TAO rmtr by
+/// default). Returns the exit status: 0, or 2 for an invalid option value.
+int print_options_help(int rank) {
+  if (rank == 0) std::cout << kUsage;
+  try {
+    const mlshell::Scene defaults;
+    CommandLineOptions o;
+    PetscCallAbort(PETSC_COMM_WORLD, command_line_options(defaults, &o));
+    const mlshell::SimulationOptions simulation = mlshell::SimulationOptions::from_petsc_options();
+    PetscCallAbort(PETSC_COMM_WORLD,
+                   mlshell::step_solver_options_help(PETSC_COMM_WORLD, *simulation.solver));
+  } catch (const std::exception& e) {
+    if (rank == 0) std::cerr << "mlshell: error: " << e.what() << std::endl;
+    return 2;
+  }
+  return 0;
 }
 
 /// Large arrays (Hessians, vertex-patch factors, MUMPS's factors, frames) on transparent huge
@@ -211,58 +339,44 @@ int main(int argc, char** argv) {
     return 0;
   }
   const char* scene_path = scene_argument(argc, argv);
-  if (!scene_path) {
+  const bool options_help = !scene_path && wants_petsc_help(argc, argv);
+  if (!scene_path && !options_help) {
     std::cerr << kUsage;
     return 1;
   }
-  restart_with_huge_pages(argv);
+  if (!options_help) restart_with_huge_pages(argv);
   if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) return 1;
   int rank = 0, size = 1, status = 0;
-  OptionErrors option_errors;  // PETSc's message for a refused solver option value
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (options_help) {
+    status = print_options_help(rank);
+    PetscFinalize();
+    return status;
+  }
+  OptionErrors option_errors;  // PETSc's message for a refused solver option value
+  bool report = false, solver_built = false;
   try {
     mlshell::Scene scene = mlshell::parse_scene(scene_path);
-    apply_scene_solver_file(scene, argc, argv);
-    char dir[PETSC_MAX_PATH_LEN];
-    PetscBool has_dir = PETSC_FALSE;
-    PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsGetString(nullptr, nullptr, "-mlshell_output_dir",
-                                                           dir, sizeof dir, &has_dir));
-    if (has_dir) scene.output.dir = dir;
-    PetscInt steps = scene.time.steps;
-    PetscCallAbort(PETSC_COMM_WORLD,
-                   PetscOptionsGetInt(nullptr, nullptr, "-mlshell_steps", &steps, nullptr));
-    if (steps < 1)
-      throw mlshell::SceneError("-mlshell_steps: must be >= 1; got '" + std::to_string(steps) +
-                                "'");
-    scene.time.steps = static_cast<int>(steps);
-    PetscReal dt = scene.time.dt;
-    PetscCallAbort(PETSC_COMM_WORLD,
-                   PetscOptionsGetReal(nullptr, nullptr, "-mlshell_dt", &dt, nullptr));
-    if (!(dt > 0.0) || !std::isfinite(dt))
-      throw mlshell::SceneError("-mlshell_dt: must be a positive number; got '" +
-                                std::to_string(dt) + "'");
-    scene.time.dt = dt;
-    PetscInt refine = scene.geometry.refine;
-    PetscCallAbort(PETSC_COMM_WORLD,
-                   PetscOptionsGetInt(nullptr, nullptr, "-mlshell_refine", &refine, nullptr));
-    if (refine < 0 || refine > 8)
-      throw mlshell::SceneError("-mlshell_refine: must be in 0..8; got '" + std::to_string(refine) +
-                                "'");
-    scene.geometry.refine = static_cast<int>(refine);
-    char table[PETSC_MAX_PATH_LEN];
-    PetscBool has_table = PETSC_FALSE;
-    PetscCallAbort(PETSC_COMM_WORLD,
-                   PetscOptionsGetString(nullptr, nullptr, "-mlshell_material_csv", table,
-                                         sizeof table, &has_table));
-    if (has_table) {  // the material alone: no mesh, no solve
-      if (rank == 0) mlshell::write_material_table(scene.material, table);
-      if (rank == 0) std::cout << "mlshell: material table in " << table << std::endl;
+    CommandLineOptions options;
+    PetscCallAbort(PETSC_COMM_WORLD, command_line_options(scene, &options));
+    apply_scene_solver_file(scene, options.scene_solver, argc, argv);
+    // The user's options are all in; mlshell's defaults come later and are never reported.
+    mlshell::note_given_options(argc, argv);
+    apply_overrides(options, scene);
+    report = options.options_left;
+    if (options.material_csv) {  // the material alone: no mesh, no solve
+      if (rank == 0) mlshell::write_material_table(scene.material, *options.material_csv);
+      if (rank == 0)
+        std::cout << "mlshell: material table in " << *options.material_csv << std::endl;
+      if (report) report_unused_options(rank, false, scene.solver.options_file);
       PetscFinalize();
       return 0;
     }
-    mlshell::Simulation sim(PETSC_COMM_WORLD, std::move(scene),
-                            mlshell::SimulationOptions::from_petsc_options());
+    const mlshell::SimulationOptions simulation = mlshell::SimulationOptions::from_petsc_options();
+    solver_built = !simulation.evaluate_only;
+    const auto options_file = scene.solver.options_file;  // for the report after the run
+    mlshell::Simulation sim(PETSC_COMM_WORLD, std::move(scene), simulation);
     PetscErrorCode error;
     {
       const OptionErrors::Scope catching(option_errors);
@@ -270,10 +384,13 @@ int main(int argc, char** argv) {
     }
     if (error && option_errors.message.empty()) PETSCABORT(PETSC_COMM_WORLD, error);
     if (error) throw mlshell::SceneError(option_errors.message);
+    // Warnings after the run's own last line; a run that did not converge (exit 3) too.
+    if (report) report_unused_options(rank, solver_built, options_file);
   } catch (const mlshell::OutputError& e) {
-    // Output is written by rank 0 alone; the other ranks cannot be told to stop cleanly.
-    std::cerr << "mlshell: error: " << e.what() << std::endl;
-    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 4);
+    if (rank == 0 || !e.every_rank()) std::cerr << "mlshell: error: " << e.what() << std::endl;
+    // Most results are written by rank 0 alone: an error there that the other ranks do not
+    // share cannot be told to them, so it ends the run with MPI_Abort.
+    if (size > 1 && !e.every_rank()) MPI_Abort(PETSC_COMM_WORLD, 4);
     status = 4;
   } catch (const std::exception& e) {
     // Scene, mesh, selection and option errors are raised identically on every rank.

@@ -47,6 +47,21 @@ void commit_temporary(const std::filesystem::path& tmp, const std::filesystem::p
 
 }  // namespace io_detail
 
+void create_output_folder(MPI_Comm comm, const std::filesystem::path& dir) {
+  io_detail::on_rank_zero(comm, [&] {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir)) {
+      const std::string why = ec ? ec.message() : std::string("exists and is not a folder");
+      throw OutputError("cannot create output folder '" + dir.string() + "': " + why);
+    }
+    std::filesystem::remove(dir / "summary.json", ec);
+    if (ec)
+      throw OutputError("cannot remove the earlier run's '" + (dir / "summary.json").string() +
+                        "': " + ec.message());
+  });
+}
+
 void write_file_atomic(const std::filesystem::path& path, const std::string& content) {
   io_detail::create_parent_folder(path);
   const std::filesystem::path tmp = io_detail::temporary_path_for(path);

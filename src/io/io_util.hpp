@@ -54,7 +54,7 @@ void on_rank_zero(MPI_Comm comm, F&& f) {
       if (error.empty()) error = "unknown error";
     }
   error = broadcast(comm, std::move(error));
-  if (!error.empty()) throw OutputError(error);
+  if (!error.empty()) throw OutputError(error, true);
 }
 
 }  // namespace mlshell::io_detail

@@ -33,51 +33,83 @@ class LogStageScope {
 
 }  // namespace
 
-SimulationOptions SimulationOptions::from_petsc_options() {
-  SimulationOptions o;
-  PetscBool flag = PETSC_FALSE;
-  PetscInt gauss = o.gauss_points;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_evaluate", &flag, nullptr));
-  o.evaluate_only = flag;
-  flag = PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_quiet", &flag, nullptr));
-  o.quiet = flag;
-  flag = PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_hierarchy_view", &flag, nullptr));
-  o.hierarchy_view = flag;
-  char dir[PETSC_MAX_PATH_LEN];
-  PetscBool has_dir = PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetString(nullptr, nullptr, "-mlshell_hierarchy_write", dir,
-                                       sizeof dir, &has_dir));
-  if (has_dir) o.hierarchy_write = dir;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetInt(nullptr, nullptr, "-mlshell_gauss_points", &gauss, nullptr));
+namespace {
+
+/// The group "mlshell: simulation": what a run does and prints.
+PetscErrorCode simulation_options(MPI_Comm comm, SimulationOptions* o) {
+  PetscBool evaluate = o->evaluate_only ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool quiet = o->quiet ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt gauss = o->gauss_points;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "mlshell: simulation", "");
+  PetscCall(PetscOptionsBool("-mlshell_evaluate",
+                             "energies of every effect and the gradient norm at the initial "
+                             "state; writes summary.json and exits (no solve)",
+                             "", evaluate, &evaluate, nullptr));
+  PetscCall(PetscOptionsBool("-mlshell_quiet", "no per-step progress lines", "", quiet, &quiet,
+                             nullptr));
+  PetscCall(PetscOptionsInt("-mlshell_gauss_points",
+                            "Gauss points per direction per element (2..6)", "", gauss, &gauss,
+                            nullptr));
+  PetscOptionsEnd();
+  o->evaluate_only = evaluate;
+  o->quiet = quiet;
   if (gauss < 2 || gauss > 6)
     throw SceneError("-mlshell_gauss_points: must be in 2..6; got '" + std::to_string(gauss) + "'");
-  o.gauss_points = static_cast<int>(gauss);
-  flag = PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetBool(nullptr, nullptr, "-mlshell_condition", &flag, nullptr));
-  o.condition = flag;
-  PetscInt n = o.condition_steps;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetInt(nullptr, nullptr, "-mlshell_condition_steps", &n, nullptr));
-  if (n < 2 || n > 2000)
-    throw SceneError("-mlshell_condition_steps: must be in 2..2000; got '" + std::to_string(n) +
-                     "'");
-  o.condition_steps = static_cast<int>(n);
-  n = 0;
-  PetscBool has = PETSC_FALSE;
-  PetscCallAbort(PETSC_COMM_WORLD,
-                 PetscOptionsGetInt(nullptr, nullptr, "-mlshell_limit_csv", &n, &has));
-  if (has && (n < 1 || n > 64))
+  o->gauss_points = static_cast<int>(gauss);
+  PetscFunctionReturn(0);
+}
+
+/// The group "mlshell: measuring": what the studies measure besides the run itself.
+PetscErrorCode measuring_options(MPI_Comm comm, SimulationOptions* o) {
+  PetscBool view = o->hierarchy_view ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool condition = o->condition ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt steps = o->condition_steps, samples = o->limit_csv_samples;
+  PetscBool has_dir = PETSC_FALSE, has_samples = PETSC_FALSE;
+  char dir[PETSC_MAX_PATH_LEN] = "";
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "mlshell: measuring", "");
+  PetscCall(PetscOptionsBool("-mlshell_condition",
+                             "estimate cond_2 of the Hessian at the final state (initial with "
+                             "-mlshell_evaluate): Lanczos on H and on H^-1 (MUMPS); into "
+                             "summary.json",
+                             "", condition, &condition, nullptr));
+  PetscCall(PetscOptionsInt("-mlshell_condition_steps", "Lanczos steps of that estimate (2..2000)",
+                            "", steps, &steps, nullptr));
+  PetscCall(PetscOptionsInt("-mlshell_limit_csv",
+                            "write limit_surface.csv: the final limit surface on a (K+1)x(K+1) "
+                            "grid per element (reference X,Y,Z; ux,uy,uz), K in 1..64 (0: none)",
+                            "", samples, &samples, &has_samples));
+  PetscCall(PetscOptionsBool("-mlshell_hierarchy_view",
+                             "print the subdivision levels 0..refine: control points, dofs, "
+                             "extraordinary vertices, nonzeros/row and memory of S, R, Q",
+                             "", view, &view, nullptr));
+  PetscCall(PetscOptionsString("-mlshell_hierarchy_write",
+                               "write each level's cage and limit surface as OBJ files into this "
+                               "folder",
+                               "", dir, dir, sizeof dir, &has_dir));
+  PetscOptionsEnd();
+  o->condition = condition;
+  if (steps < 2 || steps > 2000)
+    throw SceneError("-mlshell_condition_steps: must be in 2..2000; got '" +
+                     std::to_string(steps) + "'");
+  o->condition_steps = static_cast<int>(steps);
+  if (has_samples && (samples < 1 || samples > 64))
     throw SceneError("-mlshell_limit_csv: samples per element edge must be in 1..64; got '" +
-                     std::to_string(n) + "'");
-  o.limit_csv_samples = static_cast<int>(n);
+                     std::to_string(samples) + "'");
+  o->limit_csv_samples = static_cast<int>(samples);
+  o->hierarchy_view = view;
+  if (has_dir) o->hierarchy_write = dir;
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+SimulationOptions SimulationOptions::from_petsc_options() {
+  SimulationOptions o;
+  PetscCallAbort(PETSC_COMM_WORLD, simulation_options(PETSC_COMM_WORLD, &o));
+  PetscCallAbort(PETSC_COMM_WORLD, measuring_options(PETSC_COMM_WORLD, &o));
+  o.solver = StepSolverOptions::from_options(PETSC_COMM_WORLD);
   return o;
 }
 
@@ -109,6 +141,7 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
     PetscCallAbort(comm, PetscLogStageGetId("Solve", &stage_solve_));
     PetscCallAbort(comm, PetscLogStageGetId("Output", &stage_output_));
   }
+  if (!options_.solver) options_.solver = StepSolverOptions::from_options(comm);
   const LogStageScope setup(stage_setup_);
   frame_ = CageFrame::from(scene_.geometry);
   if (scene_.geometry.triangles())
@@ -118,7 +151,7 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   disc_ = &levels_->discretization(levels_->finest());
   layout_ = &levels_->layout(levels_->finest());
   problem_ = &multilevel_->level(levels_->finest());
-  const bool psd = hessian_projection_option(step_solver_type());
+  const bool psd = options_.solver->hessian_psd;
   for (int l = 0; l < multilevel_->num_levels(); ++l)
     for (const auto& t : multilevel_->level(l).terms()) t->set_hessian_projection(psd);
   PetscCallAbort(comm, layout_->create_vector(&u_));
@@ -137,11 +170,7 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
         *disc_->sampling_part(scene_.output.samples_for(scene_.geometry.refine), rank_, size_),
         *layout_);
   }
-  if (rank_ == 0) {
-    fs::create_directories(output_->dir);
-    // A summary left by an earlier run must not pass for this run's result.
-    fs::remove(output_->dir / "summary.json");
-  }
+  create_output_folder(comm, output_->dir);
 }
 
 void Simulation::setup_subdivision() {
@@ -159,7 +188,7 @@ void Simulation::setup_subdivision() {
   }
   // RMTR needs the scene on every level; other solvers only on the finest.
   const int finest = hierarchy_->num_levels() - 1;
-  const int coarsest = step_solver_type() == "rmtr" ? 0 : finest;
+  const int coarsest = options_.solver->type == "rmtr" ? 0 : finest;
   auto levels =
       std::make_unique<LevelHierarchy>(comm_, *hierarchy_, coarsest, options_.gauss_points);
   {
@@ -309,7 +338,7 @@ PetscErrorCode Simulation::run(int* status) {
   {
     const LogStageScope setup(stage_setup_);
     const LogEventScope event("Setup:solver");
-    solver_ = std::make_unique<StepSolver>(*problem_, multilevel_.get());
+    solver_ = std::make_unique<StepSolver>(*problem_, multilevel_.get(), &*options_.solver);
     if (scene_.time.quasistatic()) {
       const EnergyTerm* proximal = nullptr;
       for (const auto& t : problem_->terms())

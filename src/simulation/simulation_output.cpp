@@ -16,6 +16,7 @@
 #include "mlshell/effects.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
+#include "mlshell/unused_options.hpp"
 
 namespace mlshell {
 
@@ -255,6 +256,13 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                             {"max_violation_all_steps", Json(violation_max_[i])},
                             {"warning_threshold", Json(kConstraintWarning * disc_->mesh_size())}}));
     }
+    // The user's options that nothing read (main.cpp prints them as warnings).
+    Json::Array unused;
+    for (const UnusedOption& o : unused_options(solver_ != nullptr))
+      unused.push_back(Json(Json::Object{
+          {"name", Json(o.name)},
+          {"value", o.value.empty() ? Json(nullptr) : Json(o.value)},
+          {"did_you_mean", o.suggestion.empty() ? Json(nullptr) : Json(o.suggestion)}}));
     const BuildInfo& build = build_info();
     Json::Object top{
         {"scene", Json(scene_.name)},
@@ -275,6 +283,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"gradient_norm", Json(static_cast<double>(gnorm))},
         {"probes", Json(probes)},
         {"solver", Json(solver)},
+        {"unused_options", Json(unused)},
         {"material", material},
         {"constraints", Json(constraints)},
         {"wall_time", Json(MPI_Wtime() - wall_start_)},

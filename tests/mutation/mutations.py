@@ -97,7 +97,7 @@ MUTATIONS = [
      "the default coarsest level is factorised by MUMPS distributed over the ranks, which "
      "varies from run to run (-tao_rmtr_coarse_redundant ignored)", ()),
     ("default-retries-dropped", "solvers/step_solver.cpp",
-     '                                                 {"rmtr_retries", "3"},\n', "",
+     '                                      {"rmtr_retries", "3"},\n', "",
      "mlshell's default no longer matches petsc-options/rmtr-patch-dogleg.yaml, which claims "
      "to spell it out", ()),
     ("factorisations-uncounted", "solvers/trust_region_qp.cpp",
@@ -357,6 +357,18 @@ MUTATIONS = [
      "last_shift_ > 0 ? last_shift_ / 10 : 1e-10 * norm",
      "last_shift_ > 0 ? last_shift_ : 1e-10 * norm",
      "the shift search starts at the last shift, so it never comes down", ()),
+    ("unused-options-silent", "src/cli/main.cpp",
+     '    std::cerr << "mlshell: warning: " << mlshell::describe(o) << std::endl;\n', "",
+     "a misspelt option (-tao_rmtr_smoothr_qp) goes unreported after the run", ()),
+    ("default-check-reads-option", "solvers/step_solver.cpp",
+     "    PetscCall(option_given(option, &set));",
+     "    PetscCall(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &set));",
+     "an options file's key that the chosen solver ignores counts as read once mlshell checked "
+     "it for its default (-tao_rmtr_smoother_qp under -tao_type tr)", ()),
+    ("output-folder-raw-error", "src/simulation/simulation.cpp",
+     "  create_output_folder(comm, output_->dir);",
+     "  if (rank_ == 0) std::filesystem::create_directories(output_->dir);",
+     "an output folder that cannot be created exits 2 with a raw filesystem error, not 4", ()),
 ]
 
 

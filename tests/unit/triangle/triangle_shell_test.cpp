@@ -386,8 +386,8 @@ TEST(TriangleShell, ProjectedNewtonAssemblesAPositiveSemiDefiniteHessian) {
   };
   const auto [raw_min, raw_max] = min_eigenvalue(false);
   EXPECT_LT(raw_min, -1e-6 * raw_max) << "the state must make the Hessian indefinite";
-  const auto [psd_min, psd_max] = min_eigenvalue(hessian_projection_option("pnewton"));
+  const auto [psd_min, psd_max] = min_eigenvalue(hessian_projection_default("pnewton"));
   EXPECT_GE(psd_min, -1e-10 * psd_max);
-  EXPECT_FALSE(hessian_projection_option("rmtr"));
+  EXPECT_FALSE(hessian_projection_default("rmtr"));
   VecDestroy(&u);
 }
