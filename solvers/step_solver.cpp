@@ -122,7 +122,7 @@ PetscErrorCode snes_defaults() {
 /// coarse models, subspace steps and retried smoothing steps after the full-multigrid start:
 /// faster than factorised Dogleg smoothing on every scene measured from 13,467 dofs up (within
 /// 6 % below), the fastest on free-hanging cloth but for one resolution, second on the nearly
-/// linear trampoline, whose scene names rmtr-patch.yaml (README, Solver;
+/// linear trampoline, whose scene names rmtr-patch.yaml (docs/solvers.md;
 /// petsc-options/rmtr-patch-dogleg.yaml is this default spelled out, rmtr.yaml the factorised
 /// Dogleg smoothing that was the default before). Options files state what they change.
 PetscErrorCode tao_defaults() {
