@@ -77,8 +77,7 @@ std::string scene_causes(const Scene& scene, const SceneTraits& t) {
     text += "  - the pressure (" + format("%g", t.pressure) +
             " Pa) may exceed the shell's limit pressure: a neo-Hookean balloon has a maximum "
             "pressure, beyond which it inflates without bound; lower `pressure`" +
-            (t.pressure_ramped ? " or ramp it over more steps (time.steps)\n"
-                               : " or ramp it (`ramp: true`) over the steps\n");
+            (t.pressure_ramped ? "\n" : " or ramp it (`ramp: true`) over the steps\n");
   if (!t.loads.empty() && !t.supports && !t.inertia) {
     std::string names;
     for (const auto& n : t.loads) names += (names.empty() ? "" : ", ") + n;

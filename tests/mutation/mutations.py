@@ -351,6 +351,14 @@ MUTATIONS = [
      "last_shift_ > 0 ? last_shift_ / 10 : 1e-10 * norm",
      "last_shift_ > 0 ? last_shift_ : 1e-10 * norm",
      "the shift search starts at the last shift, so it never comes down", ()),
+    ("energy-floor-never-crossed", "solvers/step_solver.cpp",
+     "  crossed = crossed || f < start - bound();", "  crossed = false;",
+     "a solve whose energy falls without bound runs to -tao_max_it (E = -4e101 J) instead of "
+     "stopping as DIVERGED_ENERGY_UNBOUNDED", ()),
+    ("energy-floor-tao-test-dropped", "solvers/step_solver.cpp",
+     "  PetscCallAbort(comm, TaoSetConvergenceTest(tao_, floor_then_default_test, &floor_));\n",
+     "",
+     "TAO solvers never see the energy floor (only SNES and bnls's line-search error stop)", ()),
 ]
 
 
