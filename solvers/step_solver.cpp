@@ -2,6 +2,7 @@
 #include "mlshell/step_solver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
@@ -12,11 +13,24 @@ namespace mlshell {
 namespace {
 
 PetscErrorCode objective_and_gradient(Tao, Vec u, PetscReal* f, Vec g, void* ctx) {
-  return static_cast<Objective*>(ctx)->objective(u, f, g);
+  auto* floor = static_cast<StepSolver::EnergyFloor*>(ctx);
+  PetscFunctionBeginUser;
+  PetscCall(floor->problem->objective(u, f, g));
+  floor->observe(*f);
+  PetscFunctionReturn(0);
 }
 
-PetscErrorCode objective_only(Tao, Vec u, PetscReal* f, void* ctx) {
-  return static_cast<Objective*>(ctx)->objective(u, f, nullptr);
+PetscErrorCode objective_only(Tao tao, Vec u, PetscReal* f, void* ctx) {
+  return objective_and_gradient(tao, u, f, nullptr, ctx);
+}
+
+/// During TaoSolve: PETSc's traceback handler, silent once a trial point fell below the energy
+/// floor (the error then ends the solve as DIVERGED_ENERGY_UNBOUNDED).
+PetscErrorCode floor_error_handler(MPI_Comm comm, int line, const char* function, const char* file,
+                                   PetscErrorCode n, PetscErrorType p, const char* message,
+                                   void* ctx) {
+  if (static_cast<StepSolver::EnergyFloor*>(ctx)->trial_crossed) return n;
+  return PetscTraceBackErrorHandler(comm, line, function, file, n, p, message, nullptr);
 }
 
 PetscErrorCode hessian(Tao, Vec u, Mat H, Mat, void* ctx) {
@@ -24,11 +38,14 @@ PetscErrorCode hessian(Tao, Vec u, Mat H, Mat, void* ctx) {
 }
 
 /// SNES residual F(u) = ∇f(u); a trial point outside the material's domain (f = +inf) is a
-/// domain error, which makes newtonls's line search shorten the step.
+/// domain error, which makes newtonls's line search shorten the step. f is kept for the energy
+/// floor.
 PetscErrorCode gradient_residual(SNES snes, Vec u, Vec g, void* ctx) {
+  auto* floor = static_cast<StepSolver::EnergyFloor*>(ctx);
   PetscReal f;
   PetscFunctionBeginUser;
-  PetscCall(static_cast<Objective*>(ctx)->objective(u, &f, g));
+  PetscCall(floor->problem->objective(u, &f, g));
+  floor->last = f;
   if (f >= PETSC_INFINITY) PetscCall(SNESSetFunctionDomainError(snes));
   PetscFunctionReturn(0);
 }
@@ -53,6 +70,34 @@ PetscErrorCode option_given(const std::string& option, PetscBool* set) {
     PetscCall(PetscOptionsClearValue(nullptr, option.c_str()));
     PetscCall(PetscOptionsSetValue(nullptr, option.c_str(), has_value ? kept.c_str() : nullptr));
   }
+  PetscFunctionReturn(0);
+}
+
+/// Every TAO type's convergence test: the energy floor, then TAO's default test. Solvers call
+/// it after each iteration with f of the new iterate (tao->fc, set by TaoMonitor).
+PetscErrorCode floor_then_default_test(Tao tao, void* ctx) {
+  PetscReal f;
+  PetscFunctionBeginUser;
+  PetscCall(TaoGetSolutionStatus(tao, nullptr, &f, nullptr, nullptr, nullptr, nullptr));
+  if (static_cast<StepSolver::EnergyFloor*>(ctx)->below(f)) {
+    PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(TaoDefaultConvergenceTest(tao, nullptr));
+  PetscFunctionReturn(0);
+}
+
+/// SNES's convergence test: the energy floor at the last residual's f, then SNES's default.
+PetscErrorCode floor_then_default_snes_test(SNES snes, PetscInt it, PetscReal xnorm,
+                                            PetscReal snorm, PetscReal fnorm,
+                                            SNESConvergedReason* reason, void* ctx) {
+  auto* floor = static_cast<StepSolver::EnergyFloor*>(ctx);
+  PetscFunctionBeginUser;
+  if (floor->below(floor->last)) {
+    *reason = SNES_DIVERGED_DTOL;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
   PetscFunctionReturn(0);
 }
 
@@ -215,9 +260,23 @@ void options_read(PetscErrorCode error, const char* what) {
 
 }  // namespace
 
+bool StepSolver::EnergyFloor::below(double f) {
+  if (std::isnan(start)) start = f;
+  // NaN never crosses (the solvers report it themselves); -inf does.
+  crossed = crossed || f < start - bound();
+  return crossed;
+}
+
+void StepSolver::EnergyFloor::observe(double f) {
+  if (std::isnan(start) || !(f < start - bound())) return;
+  trial_crossed = true;
+  trial_low = std::min(trial_low, f);
+}
+
 StepSolver::StepSolver(Objective& problem, MultilevelObjective* levels,
                        const StepSolverOptions* options)
     : problem_(problem) {
+  floor_.problem = &problem;
   PetscCallAbort(PETSC_COMM_WORLD, problem.create_hessian(&H_));
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(H_));
   const StepSolverOptions o = options ? *options : StepSolverOptions::from_options(comm);
@@ -226,18 +285,21 @@ StepSolver::StepSolver(Objective& problem, MultilevelObjective* levels,
     PetscCallAbort(comm, snes_defaults());
     PetscCallAbort(comm, SNESCreate(comm, &snes_));
     PetscCallAbort(comm, MatCreateVecs(H_, &residual_, nullptr));
-    PetscCallAbort(comm, SNESSetFunction(snes_, residual_, gradient_residual, &problem_));
+    PetscCallAbort(comm, SNESSetFunction(snes_, residual_, gradient_residual, &floor_));
     PetscCallAbort(comm, SNESSetJacobian(snes_, H_, H_, hessian_jacobian, &problem_));
     options_read(SNESSetFromOptions(snes_), "SNESSetFromOptions");
+    PetscCallAbort(comm, SNESSetConvergenceTest(snes_, floor_then_default_snes_test, &floor_,
+                                                nullptr));
     return;
   }
   PetscCallAbort(comm, tao_defaults());
   PetscCallAbort(comm, TaoCreate(comm, &tao_));
   PetscCallAbort(comm,
-                 TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &problem_));
-  PetscCallAbort(comm, TaoSetObjective(tao_, objective_only, &problem_));
+                 TaoSetObjectiveAndGradient(tao_, nullptr, objective_and_gradient, &floor_));
+  PetscCallAbort(comm, TaoSetObjective(tao_, objective_only, &floor_));
   PetscCallAbort(comm, TaoSetHessian(tao_, H_, H_, hessian, &problem_));
   options_read(TaoSetFromOptions(tao_), "TaoSetFromOptions");
+  PetscCallAbort(comm, TaoSetConvergenceTest(tao_, floor_then_default_test, &floor_));
   KSP ksp = nullptr;
   PetscCallAbort(comm, TaoGetKSP(tao_, &ksp));
   if (ksp) {
@@ -268,6 +330,15 @@ std::string StepSolver::type() const {
   return t ? t : "";
 }
 
+void StepSolver::report_floor(SolveReport& report) const {
+  if (!floor_.crossed) return;
+  report.converged = false;
+  report.unbounded = true;
+  report.reason = "DIVERGED_ENERGY_UNBOUNDED";
+  report.energy_start = floor_.start;
+  report.energy_bound = floor_.bound();
+}
+
 PetscErrorCode StepSolver::solve_snes(Vec u, SolveReport& report) {
   PetscFunctionBeginUser;
   PetscCall(SNESSolve(snes_, nullptr, u));
@@ -288,11 +359,15 @@ PetscErrorCode StepSolver::solve_snes(Vec u, SolveReport& report) {
   report.iterations = static_cast<int>(its);
   report.linear_iterations = static_cast<int>(lits);
   report.energy = f;
+  report_floor(report);
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   PetscFunctionBeginUser;
+  floor_.start = floor_.last = NAN;
+  floor_.crossed = floor_.trial_crossed = false;
+  floor_.trial_low = INFINITY;
   if (snes_) PetscFunctionReturn(solve_snes(u, report));
   // |g| < max(gatol, force_rtol |f_ext|): the absolute (7.1) and one relative to the forces.
   PetscReal force, gatol, grtol, gttol;
@@ -302,9 +377,21 @@ PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   report.force_scale = force;
   PetscCall(TaoSetTolerances(tao_, report.gradient_tolerance, grtol, gttol));
   PetscCall(TaoSetSolution(tao_, u));
-  PetscCall(TaoSolve(tao_));
-  TaoConvergedReason reason;
   PetscInt its;
+  PetscCall(PetscPushErrorHandler(floor_error_handler, &floor_));
+  const PetscErrorCode error = TaoSolve(tao_);
+  PetscCall(PetscPopErrorHandler());
+  if (error && floor_.trial_crossed) {  // a PETSc line search failed on the way down
+    floor_.crossed = true;
+    PetscCall(TaoGetSolutionStatus(tao_, &its, nullptr, nullptr, nullptr, nullptr, nullptr));
+    report.iterations = static_cast<int>(its);
+    report.energy = floor_.trial_low;
+    report.gradient_norm = 0.0;
+    report_floor(report);
+    PetscFunctionReturn(0);
+  }
+  PetscCall(error);
+  TaoConvergedReason reason;
   PetscReal f, gnorm, cnorm, xdiff;
   PetscCall(TaoGetSolutionStatus(tao_, &its, &f, &gnorm, &cnorm, &xdiff, &reason));
   PetscInt lits = 0;
@@ -316,6 +403,7 @@ PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   report.energy = f;
   report.gradient_norm = gnorm;
   if (type() == "rmtr") PetscCall(rmtr_statistics(tao_, &report.rmtr));
+  report_floor(report);
   PetscFunctionReturn(0);
 }
 

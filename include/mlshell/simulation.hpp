@@ -30,6 +30,7 @@
 #include "mlshell/multilevel_problem.hpp"
 #include "mlshell/parallel_layout.hpp"
 #include "mlshell/scene.hpp"
+#include "mlshell/step_failure.hpp"
 #include "mlshell/step_solver.hpp"
 #include "mlshell/subdivision/level_hierarchy.hpp"
 #include "mlshell/subdivision/subdivision_discretization.hpp"
@@ -81,6 +82,9 @@ class Simulation {
   PetscErrorCode set_initial_state();
   PetscErrorCode evaluate(int* status);
   PetscErrorCode step(int n, SolveReport& report);
+  /// Step n's solve fell through the energy floor: says why and what to change, and returns
+  /// to the state of step n − 1.
+  PetscErrorCode stop_unbounded(int n, SolveReport& report);
   PetscErrorCode write_frame(int n, double t, bool force, bool converged);
   PetscErrorCode write_frame_files(
       int n, double t, bool xdmf, bool obj,
@@ -104,6 +108,8 @@ class Simulation {
   std::unique_ptr<TimeStepper> stepper_;
   std::unique_ptr<Output> output_;
   Vec u_ = nullptr, v_ = nullptr;
+  Vec u_last_ = nullptr, v_last_ = nullptr;  // the state before the step being solved
+  EnergyScale energy_scale_;
   int first_step_ = 0;
   /// A probe: displacement Σ w_i u_{nodes[i]} at the reference point X.
   struct ProbePoint {

@@ -18,11 +18,22 @@
 // ‖∇f‖) -snes_stol 0 (a short Newton step is not convergence) -snes_max_it 1000, and a
 // MUMPS LU as its linear solver (-ksp_type preonly -pc_type lu); e.g. -ksp_type cg
 // -pc_type hypre for BoomerAMG.
+//
+// Energy floor (every solver: each TAO type's convergence test and SNES's are wrapped): a
+// solve stops as DIVERGED_ENERGY_UNBOUNDED once its objective falls below
+//   f₀ − B,  B = kUnboundedEnergyFactor (S + |f₀|),
+// f₀ the objective where the solve began and S the scene's energy scale (set_energy_scale;
+// step_failure.hpp): the problem has no minimum near there, and iterating on only drives the
+// energy towards −∞ (a balloon beyond its limit pressure: E = −4e101 J after 1,000 iterations).
+// A PETSc line search that extrapolates along such a ray may fail with a PETSc error instead
+// (bnls's Moré–Thuente: "dx * (stp-stx) >= 0.0"); after a trial point below the floor that error
+// ends the solve as DIVERGED_ENERGY_UNBOUNDED too, silently.
 #pragma once
 
 #include <petscsnes.h>
 #include <petsctao.h>
 
+#include <cmath>
 #include <string>
 
 #include "mlshell/multilevel_objective.hpp"
@@ -43,6 +54,11 @@ struct SolveReport {
   double gradient_tolerance = 0.0;  ///< max(-tao_gatol, -mlshell_force_rtol × ‖f_ext‖)
   double force_scale = 0.0;         ///< ‖f_ext‖₂
   RmtrStatistics rmtr;              ///< for -tao_type rmtr
+  /// The solve stopped because its objective fell below energy_start − energy_bound (the
+  /// energy floor, see above); `energy` is where it stopped.
+  bool unbounded = false;
+  double energy_start = 0.0;  ///< f₀, the objective where that solve began
+  double energy_bound = 0.0;  ///< B
 };
 
 /// mlshell's options of the step solver, read by one PetscOptionsBegin/End group ("mlshell:
@@ -63,6 +79,19 @@ struct StepSolverOptions {
   /// Reads the group (invalid values: std::invalid_argument naming the option and value).
   static StepSolverOptions from_options(MPI_Comm comm);
 };
+
+/// B = kUnboundedEnergyFactor (S + |f₀|). S is the energy of unit strain of the whole membrane
+/// plus the loads' work over the surface's size (and over the motions and the free flight the
+/// scene allows): physical solutions stay within a small multiple of it (strains of order 1,
+/// displacements of the order of the size; a balloon at its limit pressure inflated 5-fold in
+/// radius: 7 S). Falling 10⁶ S would take a membrane stretched 1000-fold (its energy grows as
+/// λ²) or loads carrying the shell a million times its size, in one step. A divergent solve
+/// passes it within a few dozen iterations, as its energy falls super-exponentially (a balloon
+/// at 50 times its limit pressure: rmtr after 4 iterations, bntr 6, tr 8, bnls within its
+/// first line search; pnewton, whose PSD-projected Hessian keeps its steps short, after 94,
+/// and after 75 at 250 times): a larger factor would cost those few iterations more, a smaller
+/// one would bring no earlier stop worth the lost margin.
+constexpr double kUnboundedEnergyFactor = 1e6;
 
 /// The default of -mlshell_hessian_psd for a solver type: on for pnewton.
 bool hessian_projection_default(const std::string& solver_type);
@@ -89,9 +118,31 @@ class StepSolver {
   Tao tao() const { return tao_; }  ///< null for SNES
   /// The TAO type, or "snes-<type>" (e.g. snes-newtonls).
   std::string type() const;
+  /// The scene's energy scale S (J, > 0) of the energy floor; without it (or with +inf) a
+  /// solve has no floor.
+  void set_energy_scale(double scale) { floor_.scale = scale; }
+
+  /// The energy floor shared by the TAO and SNES convergence tests.
+  struct EnergyFloor {
+    Objective* problem = nullptr;
+    double scale = INFINITY;  // S
+    double start = NAN;       // f₀: the first value a convergence test sees in a solve
+    double last = NAN;        // SNES: f at the last residual evaluation
+    bool crossed = false;
+    /// A trial point below the floor (it stops no solve: a wild trial step proves no
+    /// divergence), and the lowest f of such points.
+    bool trial_crossed = false;
+    double trial_low = INFINITY;
+    double bound() const { return kUnboundedEnergyFactor * (scale + std::abs(start)); }
+    /// Whether f of an iterate is below the floor (the first call of a solve sets f₀ = f).
+    bool below(double f);
+    /// Notes f of any point the solver evaluates.
+    void observe(double f);
+  };
 
  private:
   PetscErrorCode solve_snes(Vec u, SolveReport& report);
+  void report_floor(SolveReport& report) const;
 
   Objective& problem_;
   Tao tao_ = nullptr;
@@ -99,6 +150,7 @@ class StepSolver {
   Vec residual_ = nullptr;
   Mat H_ = nullptr;
   PetscReal gatol_ = 1e-7, force_rtol_ = 1e-8;  // absolute and force-relative tolerances
+  EnergyFloor floor_;
 };
 
 }  // namespace mlshell

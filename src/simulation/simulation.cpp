@@ -10,6 +10,7 @@
 #include "mlshell/effects.hpp"
 #include "mlshell/log_events.hpp"
 #include "mlshell/output_files.hpp"
+#include "mlshell/step_failure.hpp"
 #include "mlshell/subdivision/level_hierarchy.hpp"
 #include "mlshell/triangle/triangle_effect_builder.hpp"
 #include "mlshell/triangle/triangle_levels.hpp"
@@ -246,6 +247,8 @@ void Simulation::setup_triangles() {
 Simulation::~Simulation() {
   VecDestroy(&u_);
   VecDestroy(&v_);
+  VecDestroy(&u_last_);
+  VecDestroy(&v_last_);
 }
 
 PetscErrorCode Simulation::natural_displacement(std::vector<double>& u) const {
@@ -348,6 +351,10 @@ PetscErrorCode Simulation::run(int* status) {
     } else {
       stepper_ = std::make_unique<ImplicitEuler>(*multilevel_, *solver_, scene_.time.dt);
     }
+    energy_scale_ = energy_scale(scene_, reference_area(*disc_), reference_size(*disc_));
+    solver_->set_energy_scale(energy_scale_.total());
+    PetscCall(VecDuplicate(u_, &u_last_));
+    PetscCall(VecDuplicate(v_, &v_last_));
   }
   PetscCall(
       PetscPrintf(comm_,
@@ -374,6 +381,8 @@ PetscErrorCode Simulation::run(int* status) {
   SolveReport report;
   for (int n = first_step_ + 1; n <= scene_.time.steps; ++n) {
     const double t0 = MPI_Wtime();
+    PetscCall(VecCopy(u_, u_last_));
+    PetscCall(VecCopy(v_, v_last_));
     PetscCall(step(n, report));
     const double wall = MPI_Wtime() - t0;
     total_iterations_ += report.iterations;
@@ -381,6 +390,11 @@ PetscErrorCode Simulation::run(int* status) {
     total_solves_ += report.solves;
     solve_time_ += wall;
     rmtr_totals_ += report.rmtr;
+    if (report.unbounded) {
+      all_converged_ = false;
+      PetscCall(stop_unbounded(n, report));
+      break;
+    }
     ++steps_done_;
     std::vector<double> energies;
     PetscCall(problem_->term_energies(u_, energies));
@@ -413,12 +427,13 @@ PetscErrorCode Simulation::run(int* status) {
     }
     if (!report.converged) {
       all_converged_ = false;
-      PetscCall(
-          PetscPrintf(comm_,
-                      "mlshell: step %d did not converge (%s, |g| = %.3e after %d iterations); "
-                      "stopping. Try a smaller dt, more iterations (-tao_max_it) or another "
-                      "solver (-tao_type).\n",
-                      n, report.reason.c_str(), report.gradient_norm, report.iterations));
+      const std::string remedies =
+          not_converged_remedies(scene_, solver_->type().rfind("snes", 0) == 0);
+      PetscCall(PetscPrintf(comm_,
+                            "mlshell: step %d did not converge (%s, |g| = %.3e after %d "
+                            "iterations); stopping. Try %s",
+                            n, report.reason.c_str(), report.gradient_norm, report.iterations,
+                            remedies.c_str()));
       break;
     }
   }
@@ -437,6 +452,31 @@ PetscErrorCode Simulation::run(int* status) {
           ? ", frame_*.obj"
           : ""));
   *status = all_converged_ ? 0 : kExitSolverFailed;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::stop_unbounded(int n, SolveReport& report) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(
+      comm_,
+      "mlshell: step %d stopped after %d iterations: the energy fell to %.2e J, below %.2e J = "
+      "E0 - B (E0 = %.2e J where the solve began, B = %g x (S + |E0|), S = %.2e J the scene's "
+      "energy scale: %s): it has no minimum near this state.\nLikely causes:\n%s",
+      n, report.iterations, report.energy, report.energy_start - report.energy_bound,
+      report.energy_start, kUnboundedEnergyFactor, energy_scale_.total(),
+      energy_scale_.describe().c_str(), unbounded_energy_causes(scene_).c_str()));
+  // The results end at the last good step: its state, its frame (written now if `every`
+  // skipped it), no row and no frame of the divergent state.
+  PetscCall(VecCopy(u_last_, u_));
+  PetscCall(VecCopy(v_last_, v_));
+  PetscCall(report_material(n - 1));
+  PetscCall(report_constraints(n - 1));
+  if (n - 1 > first_step_ && (n - 1) % scene_.output.every != 0) {
+    const LogStageScope output(stage_output_);
+    PetscCall(write_frame(n - 1, (n - 1) * scene_.time.dt, true, false));
+  }
+  PetscCall(PetscPrintf(comm_, "mlshell: the results end at step %d (t = %g s)\n", n - 1,
+                        (n - 1) * scene_.time.dt));
   PetscFunctionReturn(0);
 }
 

@@ -208,6 +208,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"reason", Json(last ? last->reason : std::string("not run"))},
         {"gradient_tolerance", Json(last ? last->gradient_tolerance : 0.0)},
         {"force_scale", Json(last ? last->force_scale : 0.0)},
+        {"energy_scale", Json(energy_scale_.total())},
         {"objective_evaluations", Json(problem_->objective_evaluations())},
         {"hessian_evaluations", Json(problem_->hessian_evaluations())},
         {"nonfinite_trial_points", Json(problem_->inadmissible_evaluations())},

@@ -91,6 +91,12 @@ PetscErrorCode Quasistatic::advance(double time, Vec u, Vec v, SolveReport& repo
     PetscCall(VecNorm(gradient_, NORM_2, &energy_gradient));
     total.energy = energy;
     total.gradient_norm = energy_gradient;
+    if (solve.unbounded) {  // the energy fell through the floor: where it stopped, as solved
+      total.unbounded = true;
+      total.energy = solve.energy;
+      total.energy_start = solve.energy_start;
+      total.energy_bound = solve.energy_bound;
+    }
     if (!solve.converged) break;
     // At the round-off floor: done if ‖∇E‖ is there too; a solve that could not move at all
     // ends the step (another one would start from the same point).

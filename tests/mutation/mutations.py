@@ -369,6 +369,14 @@ MUTATIONS = [
      "  create_output_folder(comm, output_->dir);",
      "  if (rank_ == 0) std::filesystem::create_directories(output_->dir);",
      "an output folder that cannot be created exits 2 with a raw filesystem error, not 4", ()),
+    ("energy-floor-never-crossed", "solvers/step_solver.cpp",
+     "  crossed = crossed || f < start - bound();", "  crossed = false;",
+     "a solve whose energy falls without bound runs to -tao_max_it (E = -4e101 J) instead of "
+     "stopping as DIVERGED_ENERGY_UNBOUNDED", ()),
+    ("energy-floor-tao-test-dropped", "solvers/step_solver.cpp",
+     "  PetscCallAbort(comm, TaoSetConvergenceTest(tao_, floor_then_default_test, &floor_));\n",
+     "",
+     "TAO solvers never see the energy floor (only SNES and bnls's line-search error stop)", ()),
 ]
 
 
