@@ -16,7 +16,10 @@ import re
 import sys
 from pathlib import Path
 
+import numpy as np
+from paraview import servermanager as sm
 from paraview import simple as pv
+from paraview.vtk.util.numpy_support import vtk_to_numpy
 
 
 def frames_of(xdmf):
@@ -34,7 +37,7 @@ def main():
     p.add_argument("--zscale", type=float, default=1.0, help="exaggerate z by this factor")
     p.add_argument("--elev", type=float, default=30.0, help="view elevation (degrees)")
     p.add_argument("--azim", type=float, default=-60.0, help="view azimuth from +x (degrees)")
-    p.add_argument("--zoom", type=float, default=1.0, help="zoom in (> 1) or out after framing")
+    p.add_argument("--zoom", type=float, default=1.0, help="zoom in (> 1) or out (< 1) after fitting")
     p.add_argument("--units", choices=("m", "mm"), help="colour bar units (default: by size)")
     p.add_argument("--title", help="caption (default: scene, step and time)")
     p.add_argument("--no-title", action="store_true", help="no caption")
@@ -78,7 +81,7 @@ def main():
     lut.RescaleTransferFunction(0.0, max(umax * factor, 1e-30))
     shown.Specular, shown.SpecularPower = 0.25, 40.0
     bar = pv.GetScalarBar(lut, view)
-    bar.Title, bar.ComponentTitle = f"|displacement| [{units}]", ""
+    bar.Title, bar.ComponentTitle = f"displacement magnitude [{units}]", ""
     bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
     bar.TitleFontSize, bar.LabelFontSize = 16, 14
     bar.RangeLabelFormat = "%-#.3g"
@@ -103,7 +106,13 @@ def main():
     camera.SetPosition([c + d for c, d in zip(centre, direction)])
     camera.SetViewUp([0.0, 0.0, 1.0] if abs(a.elev) < 89 else [0.0, 1.0, 0.0])
     view.ResetCamera(False)
-    camera.Zoom(1.15 * a.zoom)
+    # Zoom until the surface's points fill the picture left of the colour bar.
+    m = camera.GetCompositeProjectionTransformMatrix(a.size[0] / a.size[1], -1, 1)
+    m = np.array([[m.GetElement(i, j) for j in range(4)] for i in range(4)])
+    x = vtk_to_numpy(sm.Fetch(surface).GetPoints().GetData())
+    h = np.c_[x, np.ones(len(x))] @ m.T
+    extent = np.abs(h[:, :2] / h[:, 3:]).max(axis=0)
+    camera.Zoom(a.zoom * min(0.74 / extent[0], (0.92 if a.no_title else 0.84) / extent[1]))
 
     out = Path(a.out) if a.out else folder / "final.png"
     out.parent.mkdir(parents=True, exist_ok=True)
