@@ -3,7 +3,7 @@
 # and steps on 2 ranks into out/pictures/<scene>/, and renders its last frame with ParaView
 # (examples/render.py) to examples/pictures/<scene>.png; the drape also to the README's banner,
 # docs/pictures/drape.png. Needs build/mlshell and pvpython (Debian python3-paraview, xvfb);
-# --no-mpi keeps pvpython from starting an MPI singleton it does not need.
+# examples/pvpython.sh runs pvpython under xvfb-run.
 #
 #   bash examples/render_pictures.sh                  # all scenes (a few minutes on 2 cores)
 #   bash examples/render_pictures.sh drape balloon    # only these
@@ -27,9 +27,9 @@ for scene in examples/*.yaml examples/triangle/*.yaml; do
       { tail -20 "$out.log"; exit 1; }
   fi
   # shellcheck disable=SC2086  # the view options are words
-  xvfb-run -a pvpython --no-mpi examples/render.py "$out" --out "examples/pictures/$name.png" ${view[$name]:-}
+  bash examples/pvpython.sh examples/render.py "$out" --out "examples/pictures/$name.png" ${view[$name]:-}
   if [ "$name" = drape ]; then
-    xvfb-run -a pvpython --no-mpi examples/render.py "$out" --out docs/pictures/drape.png --size 1200 500 \
+    bash examples/pvpython.sh examples/render.py "$out" --out docs/pictures/drape.png --size 1200 500 \
       --no-title --elev 25 --zoom 1.1
   fi
 done

@@ -10,7 +10,7 @@
 set -euo pipefail
 mlshell=$1 root=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
-pv() { xvfb-run -a pvpython --no-mpi "$@"; }  # no MPI singleton for ParaView itself
+pv() { bash "$root/examples/pvpython.sh" "$@"; }
 run() { mpiexec --oversubscribe -n 2 "$mlshell" "$@" > "$work/$(basename "$1" .yaml).log" 2>&1 ||
           { cat "$work/$(basename "$1" .yaml).log"; exit 1; }; }
 
