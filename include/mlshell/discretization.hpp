@@ -105,13 +105,19 @@ class Discretization {
   /// The h of the penalty β = h^-σ and of tolerances: the mean element edge length (m).
   virtual double mesh_size() const = 0;
   /// Sampling of the surface for output, `samples` per element edge (ignored by kinds whose
-  /// elements are flat).
+  /// elements are flat): one watertight surface, every point once.
   virtual std::unique_ptr<SurfaceSampling> sampling(int samples) const = 0;
   /// Part i of n of a sampling of the surface, what rank i of n writes of each frame
   /// (DistributedSampling): the same points and cells as sampling(samples) has, in the same
   /// order, cut into contiguous parts. Kinds that can sample a part alone override it.
   virtual std::unique_ptr<SurfaceSampling> sampling_part(int samples, int i, int n) const {
     return sampling(samples)->slice(i, n);
+  }
+  /// Each element sampled on its own, points shared by elements repeated: the rows of
+  /// -mlshell_limit_csv, which the accuracy study integrates element by element. Kinds whose
+  /// elements are flat: sampling(samples).
+  virtual std::unique_ptr<SurfaceSampling> element_sampling(int samples) const {
+    return sampling(samples);
   }
 };
 

@@ -16,7 +16,8 @@
 //                                initial state with -mlshell_evaluate); see hessian_spectrum.hpp
 //   -mlshell_condition_steps <60> Lanczos steps of that estimate
 //   -mlshell_limit_csv K         write limit_surface.csv: the final limit surface sampled on a
-//                                (K+1)×(K+1) grid per element (reference point, displacement)
+//                                (K+1)×(K+1) grid per element, points shared by elements
+//                                repeated (reference point, displacement)
 // PETSc log stages (-log_view): Setup (levels, problems, solver), Solve, Output.
 #pragma once
 

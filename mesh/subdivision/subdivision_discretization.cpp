@@ -161,6 +161,10 @@ std::unique_ptr<SurfaceSampling> SubdivisionDiscretization::sampling_part(int sa
   return sample_limit_surface(*this, samples, i, n);
 }
 
+std::unique_ptr<SurfaceSampling> SubdivisionDiscretization::element_sampling(int samples) const {
+  return sample_element_grids(*this, samples);
+}
+
 SurfacePoint SubdivisionDiscretization::edge_point(const BoundaryEdge& e, double s) const {
   // Corners 0..3 sit at (0,0), (1,0), (1,1), (0,1); edge k runs from corner k to corner k+1.
   switch (e.edge) {

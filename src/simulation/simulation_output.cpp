@@ -141,7 +141,7 @@ PetscErrorCode Simulation::write_limit_csv() {
   std::vector<double> u;
   PetscCall(layout_->gather_natural(u_, u));
   if (rank_ == 0) {
-    const SurfaceSample s = disc_->sampling(options_.limit_csv_samples)->sample(u);
+    const SurfaceSample s = disc_->element_sampling(options_.limit_csv_samples)->sample(u);
     std::string text = "X,Y,Z,ux,uy,uz\n";
     char line[256];
     for (size_t i = 0; i + 2 < s.points.size(); i += 3) {

@@ -59,10 +59,13 @@ class SubdivisionDiscretization final : public Discretization {
   std::vector<std::vector<int>> boundary_loops() const override;
   /// Mean length of the interior faces' edges (the h of β = h^-σ).
   double mesh_size() const override { return mesh_size_; }
-  /// The limit surface on a (samples+1)² grid per element.
+  /// The limit surface on a samples × samples grid of quadrilaterals per element, points shared
+  /// by elements once (sample_limit_surface).
   std::unique_ptr<SurfaceSampling> sampling(int samples) const override;
-  /// The elements of part i of n, sampled alone.
+  /// The elements of part i of n and the points they own, sampled alone.
   std::unique_ptr<SurfaceSampling> sampling_part(int samples, int i, int n) const override;
+  /// A (samples+1)² grid per element (sample_element_grids).
+  std::unique_ptr<SurfaceSampling> element_sampling(int samples) const override;
 
   const QuadMesh& mesh() const { return mesh_; }
   const LimitEvaluator& evaluator() const { return *evaluator_; }

@@ -76,8 +76,9 @@ TEST(SurfaceSampling, SlicesPutTogetherAreTheWhole) {
 }
 
 TEST(SurfaceSampling, SubdivisionPartsSampledAloneAreTheWhole) {
-  // Each rank samples only its elements (SubdivisionDiscretization::sampling_part); an uneven
-  // split, with a cage face at an extraordinary vertex.
+  // Each rank samples only its elements and the points they own
+  // (SubdivisionDiscretization::sampling_part); an uneven split, with a cage face at an
+  // extraordinary vertex.
   TestProblem tp("extraordinary", PETSC_COMM_SELF);
   for (int k : {1, 3}) {
     const auto whole = tp.disc->sampling(k);
