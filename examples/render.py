@@ -37,7 +37,7 @@ def main():
     p.add_argument("--zscale", type=float, default=1.0, help="exaggerate z by this factor")
     p.add_argument("--elev", type=float, default=30.0, help="view elevation (degrees)")
     p.add_argument("--azim", type=float, default=-60.0, help="view azimuth from +x (degrees)")
-    p.add_argument("--zoom", type=float, default=1.0, help="zoom in (> 1) or out (< 1) after fitting")
+    p.add_argument("--zoom", type=float, default=1.0, help="zoom in (> 1) or out after fitting")
     p.add_argument("--units", choices=("m", "mm"), help="colour bar units (default: by size)")
     p.add_argument("--title", help="caption (default: scene, step and time)")
     p.add_argument("--no-title", action="store_true", help="no caption")
@@ -63,7 +63,8 @@ def main():
     units = a.units or ("m" if umax >= 0.1 else "mm")
     factor = 1.0 if units == "m" else 1000.0
     # The magnitude before the z exaggeration, which would stretch the vectors too.
-    magnitude = pv.Calculator(Input=reader, ResultArrayName="u", Function=f"mag(displacement)*{factor}")
+    magnitude = pv.Calculator(Input=reader, ResultArrayName="u",
+                              Function=f"mag(displacement)*{factor}")
     shape = pv.Transform(Input=magnitude)
     shape.Transform.Scale = [1.0, 1.0, a.zscale]
     surface = pv.GenerateSurfaceNormals(Input=pv.ExtractSurface(Input=shape), Splitting=0)

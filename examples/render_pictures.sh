@@ -23,13 +23,14 @@ for scene in examples/*.yaml examples/triangle/*.yaml; do
   out=out/pictures/$name
   echo "render_pictures: $scene -> examples/pictures/$name.png"
   if [ $run = 1 ]; then
-    mpiexec --oversubscribe -n 2 build/mlshell "$scene" -mlshell_output_dir "$out" > "$out.log" 2>&1 ||
-      { tail -20 "$out.log"; exit 1; }
+    mpiexec --oversubscribe -n 2 build/mlshell "$scene" -mlshell_output_dir "$out" \
+      > "$out.log" 2>&1 || { tail -20 "$out.log"; exit 1; }
   fi
   # shellcheck disable=SC2086  # the view options are words
-  bash examples/pvpython.sh examples/render.py "$out" --out "examples/pictures/$name.png" ${view[$name]:-}
+  bash examples/pvpython.sh examples/render.py "$out" --out "examples/pictures/$name.png" \
+    ${view[$name]:-}
   if [ "$name" = drape ]; then
-    bash examples/pvpython.sh examples/render.py "$out" --out docs/pictures/drape.png --size 1200 500 \
-      --no-title --elev 25 --zoom 1.1
+    bash examples/pvpython.sh examples/render.py "$out" --out docs/pictures/drape.png \
+      --size 1200 500 --no-title --azim=-45 --elev 20
   fi
 done

@@ -77,8 +77,8 @@ def check_reader(name, reader, a, expect):
               f"{at}: point field displacement with 3 components")
         for field in expect["cell_fields"]:
             f = grid.GetCellData().GetArray(field)
-            check(f is not None and f.GetNumberOfComponents() == 1 and f.GetNumberOfTuples() == ncells,
-                  f"{at}: cell field {field} with 1 component")
+            check(f is not None and f.GetNumberOfComponents() == 1
+                  and f.GetNumberOfTuples() == ncells, f"{at}: cell field {field} with 1 component")
         if u is None or u.GetNumberOfComponents() != 3:
             continue
         x = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
@@ -101,7 +101,8 @@ def check_reader(name, reader, a, expect):
               f"{expect['boundary']}")
         nn = fetch(nonmanifold, t).GetNumberOfCells()
         check(nn == 0, f"{at}: {nn} non-manifold edges")
-    check(moved > 0, f"{name}: the last frame moved from the rest state (by up to {moved:.3g} m)")
+    check(moved > 0, f"{name}: the last frame moved from the rest state ({moved:.3g} m in one "
+          "coordinate)")
     for s in (nonmanifold, edges, clean, surface):
         pv.Delete(s)
 
@@ -150,7 +151,8 @@ def main():
           f"{a.xdmf}: HDF5 geometry datasets of {sorted(set(points))} points in {len(points)} "
           f"grids, expected {expect['points']} in {a.steps + 1}")
     check(set(cells) == {expect["cells"]},
-          f"{a.xdmf}: HDF5 topology datasets of {sorted(set(cells))} cells, expected {expect['cells']}")
+          f"{a.xdmf}: HDF5 topology datasets of {sorted(set(cells))} cells, "
+          f"expected {expect['cells']}")
     check_reader("XDMF Reader", pv.XDMFReader(FileNames=[a.xdmf]), a, expect)
     opened = pv.OpenDataFile(a.xdmf)
     check_reader(f"OpenDataFile ({opened.GetXMLName()})", opened, a, expect)

@@ -30,6 +30,7 @@ if pv "$root/tests/paraview/check_frames.py" "$work/sheet/sheet.xdmf" --steps 2 
       --samples 3 > "$work/wrong_count.log" 2>&1; then
   echo "FAIL check_frames.py passed a sheet of 6 x 5 elements (it has 6 x 4)"; status=1
 else
-  echo "ok   check_frames.py fails on a wrong element count ($(grep -c '^FAIL' "$work/wrong_count.log") checks)"
+  echo "ok   check_frames.py fails on a wrong element count" \
+       "($(grep -c '^FAIL' "$work/wrong_count.log") checks)"
 fi
 exit $status
