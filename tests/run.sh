@@ -3,7 +3,8 @@
 # whole suite (GoogleTest units, the 2-rank MPI tests, and the command-line tests) with ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash .ci/build
+# ParaView's pvpython under a virtual X server, for the paraview.frames test only.
+bash .ci/build paraview python3-paraview xvfb xauth
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # One BLAS thread per MPI rank: the ranks already occupy the cores.
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
