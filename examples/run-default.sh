@@ -10,4 +10,5 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # One BLAS thread per MPI rank: the ranks already occupy the cores.
 export OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-1}
 mpiexec --oversubscribe -n 2 build/mlshell examples/drape.yaml "$@"
-echo "Open out/drape/drape.xdmf in ParaView; per-step statistics: out/drape/steps.csv; summary: out/drape/summary.json"
+echo "Open out/drape/drape.xdmf in ParaView (Apply, colour by displacement, Play; docs/outputs.md);"
+echo "per-step statistics: out/drape/steps.csv; summary: out/drape/summary.json"

@@ -24,15 +24,6 @@ PetscErrorCode objective_only(Tao tao, Vec u, PetscReal* f, void* ctx) {
   return objective_and_gradient(tao, u, f, nullptr, ctx);
 }
 
-/// During TaoSolve: PETSc's traceback handler, silent once a trial point fell below the energy
-/// floor (the error then ends the solve as DIVERGED_ENERGY_UNBOUNDED).
-PetscErrorCode floor_error_handler(MPI_Comm comm, int line, const char* function, const char* file,
-                                   PetscErrorCode n, PetscErrorType p, const char* message,
-                                   void* ctx) {
-  if (static_cast<StepSolver::EnergyFloor*>(ctx)->trial_crossed) return n;
-  return PetscTraceBackErrorHandler(comm, line, function, file, n, p, message, nullptr);
-}
-
 PetscErrorCode hessian(Tao, Vec u, Mat H, Mat, void* ctx) {
   return static_cast<Objective*>(ctx)->hessian(u, H);
 }
@@ -269,6 +260,11 @@ bool StepSolver::EnergyFloor::below(double f) {
 
 void StepSolver::EnergyFloor::observe(double f) {
   if (std::isnan(start) || !(f < start - bound())) return;
+  // From here on an error (a PETSc line search failing on the way down) ends the solve as
+  // DIVERGED_ENERGY_UNBOUNDED, silently: PETSc's return-only handler until TaoSolve returns.
+  // Before, errors go to whichever handler was in place (an option's value refused at set-up
+  // is invalid input, main's handler).
+  if (!trial_crossed) PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   trial_crossed = true;
   trial_low = std::min(trial_low, f);
 }
@@ -378,9 +374,8 @@ PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   PetscCall(TaoSetTolerances(tao_, report.gradient_tolerance, grtol, gttol));
   PetscCall(TaoSetSolution(tao_, u));
   PetscInt its;
-  PetscCall(PetscPushErrorHandler(floor_error_handler, &floor_));
   const PetscErrorCode error = TaoSolve(tao_);
-  PetscCall(PetscPopErrorHandler());
+  if (floor_.trial_crossed) PetscCall(PetscPopErrorHandler());  // pushed by observe()
   if (error && floor_.trial_crossed) {  // a PETSc line search failed on the way down
     floor_.crossed = true;
     PetscCall(TaoGetSolutionStatus(tao_, &its, nullptr, nullptr, nullptr, nullptr, nullptr));
