@@ -4,7 +4,7 @@
   line for line without its comments (mlshell's --help example is checked by a unit test,
   SceneFormatHelp.ExampleIsTheMainJobsDrape);
 - docs/scene-format.md documents exactly the keys, effects and selections `mlshell --help` lists;
-- every relative link in README.md and docs/*.md points at a file or folder that exists.
+- every relative link in README.md, examples/README.md and docs/*.md points at a file or folder that exists.
 
   /usr/bin/python3 tests/docs/check_docs.py build/mlshell ."""
 import re
@@ -90,7 +90,7 @@ LINK = re.compile(r"\]\(([^)\s]+)\)")
 
 
 def check_links(root):
-    pages = [root / "README.md"] + sorted((root / "docs").glob("*.md"))
+    pages = [root / "README.md", root / "examples" / "README.md"] + sorted((root / "docs").glob("*.md"))
     for page in pages:
         for target in LINK.findall(page.read_text()):
             if re.match(r"[a-z]+:", target) or target.startswith("#"):
