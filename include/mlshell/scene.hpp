@@ -72,10 +72,20 @@ struct TriangleMeshSpec {
   int rings = 8, subdivisions = 3;
 };
 
+/// `hierarchy: {levels: 4, ratio: 4}` or `{vertices: [2000, 500, 125]}`: coarser levels of a
+/// triangle mesh by decimation (paper 2 §4.1). `vertices` lists the coarse levels' vertex counts,
+/// finest-but-one first; otherwise each level has about 1/ratio of the next finer one's.
+struct HierarchySpec {
+  int levels = 4;              ///< in all, the fine mesh included: 2..12
+  double ratio = 4.0;          ///< > 1
+  std::vector<int> vertices;   ///< if given: strictly decreasing, ≥ 4 each
+};
+
 struct GeometrySpec {
   std::variant<RectangleCage, LShapeCage, ObjCage> cage = RectangleCage{};
   int refine = 0;                        ///< uniform Catmull–Clark refinements of the cage, 0..8
   std::optional<TriangleMeshSpec> mesh;  ///< a triangle mesh instead of the cage
+  std::optional<HierarchySpec> hierarchy;  ///< triangle meshes: decimated coarser levels
   bool triangles() const { return mesh.has_value(); }
   /// Named sides, corners and point(u, v) exist: a generated cage or triangle rectangle.
   bool has_frame() const;

@@ -35,6 +35,7 @@
 #include "mlshell/subdivision/level_hierarchy.hpp"
 #include "mlshell/subdivision/subdivision_discretization.hpp"
 #include "mlshell/subdivision/subdivision_hierarchy.hpp"
+#include "mlshell/triangle/triangle_mesh.hpp"
 #include "mlshell/time_stepper.hpp"
 
 namespace mlshell {
@@ -58,6 +59,8 @@ struct SimulationOptions {
 
 /// Exit status of a run: 0 converged, 3 a step's solver did not converge.
 constexpr int kExitSolverFailed = 3;
+
+struct DecimationHierarchy;
 
 class Simulation {
  public:
@@ -120,6 +123,8 @@ class Simulation {
   std::vector<ProbePoint> probes_;
   void setup_subdivision();
   void setup_triangles();
+  /// The scene's geometry.hierarchy of `mesh` (SceneError naming the key if it cannot be built).
+  std::shared_ptr<const DecimationHierarchy> decimate_mesh(const TriangleMesh& mesh);
   double wall_start_ = 0.0;
   long total_iterations_ = 0;
   long total_linear_iterations_ = 0;

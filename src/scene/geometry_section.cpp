@@ -165,10 +165,40 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
   return spec;
 }
 
+HierarchySpec read_hierarchy(const Field& hierarchy) {
+  hierarchy.expect_keys({"levels", "ratio", "vertices"});
+  HierarchySpec spec;
+  if (const auto vertices = hierarchy.find("vertices")) {
+    for (const char* key : {"levels", "ratio"})
+      if (const auto other = hierarchy.find(key))
+        other->fail("give either levels (with ratio) or vertices, not both");
+    const std::vector<Field> items = vertices->items();
+    vertices->check(!items.empty() && items.size() <= 11,
+                    "a hierarchy needs 1 to 11 coarse levels",
+                    "[n1, n2, ...]: the coarse levels' vertex counts, finest-but-one first");
+    for (const Field& item : items) {
+      const int n = item.integer_in(4, 1 << 30);
+      item.check(spec.vertices.empty() || n < spec.vertices.back(),
+                 "each coarse level must have fewer vertices than the finer one before it");
+      spec.vertices.push_back(n);
+    }
+    spec.levels = static_cast<int>(items.size()) + 1;
+    return spec;
+  }
+  if (const auto levels = hierarchy.find("levels")) spec.levels = levels->integer_in(2, 12);
+  if (const auto ratio = hierarchy.find("ratio")) {
+    spec.ratio = ratio->number();
+    ratio->check(spec.ratio > 1.0 && spec.ratio <= 64.0,
+                 "each level must have fewer vertices than the next finer one",
+                 "a number in (1, 64]: a finer level's vertices per coarse vertex");
+  }
+  return spec;
+}
+
 }  // namespace
 
 GeometrySpec read_geometry(const Field& geometry, const std::filesystem::path& scene_dir) {
-  geometry.expect_keys({"cage", "refine", "mesh"});
+  geometry.expect_keys({"cage", "refine", "mesh", "hierarchy"});
   GeometrySpec spec;
   if (const auto mesh = geometry.find("mesh")) {
     mesh->check(!geometry.find("cage"),
@@ -176,8 +206,13 @@ GeometrySpec read_geometry(const Field& geometry, const std::filesystem::path& s
     if (const auto refine = geometry.find("refine"))
       refine->fail("refine applies to subdivision cages, not triangle meshes");
     spec.mesh = read_mesh(*mesh, scene_dir);
+    if (const auto hierarchy = geometry.find("hierarchy")) spec.hierarchy = read_hierarchy(*hierarchy);
     return spec;
   }
+  if (const auto hierarchy = geometry.find("hierarchy"))
+    hierarchy->fail("hierarchy applies to triangle meshes; a subdivision cage's levels come from "
+                    "refine",
+                    "geometry: {mesh: {...}, hierarchy: {levels: 4, ratio: 4}}");
   spec.cage = read_cage(geometry.require("cage",
                                          "{generator: rectangle, ...} or {obj: path}, "
                                          "or a triangle mesh: {mesh: {...}}"),

@@ -82,12 +82,15 @@ PetscErrorCode measuring_options(MPI_Comm comm, SimulationOptions* o) {
                             "grid per element (reference X,Y,Z; ux,uy,uz), K in 1..64 (0: none)",
                             "", samples, &samples, &has_samples));
   PetscCall(PetscOptionsBool("-mlshell_hierarchy_view",
-                             "print the subdivision levels 0..refine: control points, dofs, "
-                             "extraordinary vertices, nonzeros/row and memory of S, R, Q",
+                             "print the levels: subdivision (control points, dofs, "
+                             "extraordinary vertices, nonzeros/row and memory of S, R, Q) or "
+                             "triangle (vertices, faces, smallest angle, build time, nonzeros of "
+                             "U, rest-shape recovery)",
                              "", view, &view, nullptr));
   PetscCall(PetscOptionsString("-mlshell_hierarchy_write",
-                               "write each level's cage and limit surface as OBJ files into this "
-                               "folder",
+                               "write each level as OBJ files into this folder (subdivision: "
+                               "cage and limit surface; triangle: rest mesh and its prolongation "
+                               "to the finest level)",
                                "", dir, dir, sizeof dir, &has_dir));
   PetscOptionsEnd();
   o->condition = condition;
@@ -210,6 +213,58 @@ void Simulation::setup_subdivision() {
   levels_ = std::move(levels);
 }
 
+namespace {
+
+/// The fine vertices the scene's point selections pick (point conditions, point loads, probes):
+/// decimation keeps them, so a point means the same vertex on every level.
+std::vector<int> selected_points(const Scene& scene, const TriangleDiscretization& fine,
+                                 const CageFrame& frame) {
+  std::vector<int> points;
+  auto add = [&](const Where& where) {
+    if (const auto* p = std::get_if<PointSelection>(&where.selection))
+      points.push_back(select_vertex(fine, *p, frame, where.text));
+  };
+  for (const Effect& effect : scene.effects)
+    std::visit(
+        [&](const auto& e) {
+          if constexpr (requires { e.where; }) add(e.where);
+        },
+        effect);
+  for (const auto& probe : scene.probes) add(probe.where);
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  return points;
+}
+
+}  // namespace
+
+std::shared_ptr<const DecimationHierarchy> Simulation::decimate_mesh(const TriangleMesh& mesh) {
+  const HierarchySpec& spec = *scene_.geometry.hierarchy;
+  const std::string where = scene_.file.string() + ": geometry.hierarchy: ";
+  DecimationOptions options;
+  if (spec.vertices.empty())
+    options = DecimationOptions::by_ratio(mesh.num_points(), spec.levels, spec.ratio);
+  else
+    options.vertices = spec.vertices;
+  TriangleMesh marked = mesh;
+  {
+    const TriangleDiscretization fine(mesh);
+    const std::vector<int> points = selected_points(scene_, fine, frame_);
+    if (!points.empty()) marked.groups[" selected points"] = points;
+  }
+  try {
+    options.validate(mesh.num_points());
+    const LogEventScope event("Setup:decimation");
+    auto hierarchy = std::make_shared<DecimationHierarchy>(decimate(marked, options));
+    for (DecimationLevel& level : hierarchy->levels) level.mesh.groups.erase(" selected points");
+    return hierarchy;
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(where + e.what());
+  } catch (const MeshError& e) {
+    throw SceneError(where + e.what());
+  }
+}
+
 void Simulation::setup_triangles() {
   TriangleMesh mesh;
   try {
@@ -219,10 +274,29 @@ void Simulation::setup_triangles() {
   } catch (const std::invalid_argument& e) {
     throw SceneError(scene_.file.string() + ": geometry.mesh: " + e.what());
   }
+  // RMTR needs the scene on every level; other solvers only on the finest.
+  const bool hierarchy = scene_.geometry.hierarchy.has_value();
+  const bool multilevel = hierarchy && options_.solver->type == "rmtr";
+  const bool inspect = options_.hierarchy_view || !options_.hierarchy_write.empty();
+  std::shared_ptr<const DecimationHierarchy> decimation;
+  if (hierarchy && (multilevel || inspect)) decimation = decimate_mesh(mesh);
+  if (decimation && inspect) {
+    const TriangleLevels all(comm_, decimation);
+    if (options_.hierarchy_view) PetscCallAbort(comm_, view_hierarchy(all, comm_));
+    if (!options_.hierarchy_write.empty()) write_hierarchy(all, options_.hierarchy_write);
+  } else if (inspect && rank_ == 0) {
+    std::fprintf(stderr,
+                 "mlshell: warning: -mlshell_hierarchy_view/_write: %s has no geometry.hierarchy; "
+                 "its triangle mesh is one level\n",
+                 scene_.file.c_str());
+  }
   std::unique_ptr<TriangleLevels> levels;
   {
     const LogEventScope event("Setup:layout");
-    levels = std::make_unique<TriangleLevels>(comm_, std::move(mesh));
+    if (multilevel)
+      levels = std::make_unique<TriangleLevels>(comm_, decimation);
+    else
+      levels = std::make_unique<TriangleLevels>(comm_, std::move(mesh));
   }
   const TriangleLevels& t = *levels;
   {

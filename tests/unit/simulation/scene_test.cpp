@@ -48,6 +48,10 @@ class ScratchDir {
   fs::path path_;
 };
 
+constexpr const char* kTriangleMaterial =
+    "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, thickness: 0.001, "
+    "volume_density: 500}\n";
+
 /// The parts of a small valid scene, to be replaced one at a time by a test.
 struct SceneText {
   std::string geometry = "geometry: {cage: {generator: rectangle, faces: [4, 4]}}\n";
@@ -336,6 +340,29 @@ TEST(SceneParse, ExplicitClydeParametersOverrideThePreset) {
   EXPECT_TRUE(plain.material.preset.empty());
   EXPECT_EQ(as<ClydeMaterial>(plain.material.model).alpha[3], (std::vector<double>{2}));
   EXPECT_DOUBLE_EQ(plain.material.density, 0.0);
+}
+
+TEST(SceneParse, TriangleHierarchyByRatioOrByVertexCounts) {
+  const ScratchDir dir;
+  SceneText text;
+  text.material = kTriangleMaterial;
+  text.effects = "effects: [gravity]\n";
+  text.geometry = "geometry: {mesh: {generator: sphere}, hierarchy: {levels: 3, ratio: 3.5}}\n";
+  const Scene by_ratio = parse_scene(dir.write("ratio.yaml", text.str()));
+  ASSERT_TRUE(by_ratio.geometry.hierarchy.has_value());
+  EXPECT_EQ(by_ratio.geometry.hierarchy->levels, 3);
+  EXPECT_EQ(by_ratio.geometry.hierarchy->ratio, 3.5);
+  EXPECT_TRUE(by_ratio.geometry.hierarchy->vertices.empty());
+  text.geometry = "geometry: {mesh: {generator: sphere}, hierarchy: {}}\n";
+  const Scene defaults = parse_scene(dir.write("defaults.yaml", text.str()));
+  EXPECT_EQ(defaults.geometry.hierarchy->levels, 4);
+  EXPECT_EQ(defaults.geometry.hierarchy->ratio, 4.0);
+  text.geometry = "geometry: {mesh: {generator: sphere}, hierarchy: {vertices: [300, 80]}}\n";
+  const Scene counts = parse_scene(dir.write("counts.yaml", text.str()));
+  EXPECT_EQ(counts.geometry.hierarchy->levels, 3);
+  EXPECT_EQ(counts.geometry.hierarchy->vertices, (std::vector<int>{300, 80}));
+  text.geometry = "geometry: {mesh: {generator: sphere}}\n";
+  EXPECT_FALSE(parse_scene(dir.write("none.yaml", text.str())).geometry.hierarchy.has_value());
 }
 
 TEST(SceneParse, EffectsMayBeEmptyOrAbsent) {
@@ -678,6 +705,48 @@ TEST(SceneErrors, InlineDefects) {
        }),
        5,
        {"probes.p: lies in the block cut away", "got 'corner(top-right)'"}},
+      {"hierarchy_on_a_cage",
+       with([](SceneText& t) {
+         t.geometry = "geometry: {cage: {generator: rectangle}, hierarchy: {levels: 3}}\n";
+       }),
+       1,
+       {"geometry.hierarchy: hierarchy applies to triangle meshes", "refine"}},
+      {"hierarchy_ratio_one",
+       with([](SceneText& t) {
+         t.geometry = "geometry: {mesh: {generator: sphere}, hierarchy: {levels: 3, ratio: 1}}\n";
+         t.material = kTriangleMaterial;
+       }),
+       1,
+       {"geometry.hierarchy.ratio: each level must have fewer vertices", "got '1'", "(1, 64]"}},
+      {"hierarchy_one_level",
+       with([](SceneText& t) {
+         t.geometry = "geometry: {mesh: {generator: sphere}, hierarchy: {levels: 1}}\n";
+         t.material = kTriangleMaterial;
+       }),
+       1,
+       {"geometry.hierarchy.levels: must be in 2..12; got '1'"}},
+      {"hierarchy_vertices_increase",
+       with([](SceneText& t) {
+         t.geometry = "geometry:\n  mesh: {generator: sphere}\n  hierarchy: {vertices: [100, 200]}\n";
+         t.material = kTriangleMaterial;
+       }),
+       3,
+       {"geometry.hierarchy.vertices[1]: each coarse level must have fewer vertices", "got '200'"}},
+      {"hierarchy_both",
+       with([](SceneText& t) {
+         t.geometry =
+             "geometry: {mesh: {generator: sphere}, hierarchy: {vertices: [100], levels: 2}}\n";
+         t.material = kTriangleMaterial;
+       }),
+       1,
+       {"geometry.hierarchy.levels: give either levels (with ratio) or vertices, not both"}},
+      {"hierarchy_unknown_key",
+       with([](SceneText& t) {
+         t.geometry = "geometry: {mesh: {generator: sphere}, hierarchy: {level: 3}}\n";
+         t.material = kTriangleMaterial;
+       }),
+       1,
+       {"geometry.hierarchy", "level", "levels"}},
       {"unknown_model",
        with([](SceneText& t) {
          t.material = "material: {model: mooney-rivlin, thickness: 1, density: 1}\n";
