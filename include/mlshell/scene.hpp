@@ -68,6 +68,10 @@ struct TriangleMeshSpec {
   std::optional<double> edge_length;  ///< rectangle: unstructured with this target edge length
   bool uniform_diagonals = false;     ///< structured rectangle: every diagonal from bottom-left
   std::array<double, 2> origin{0.0, 0.0};
+  /// rectangle: an embossed rest shape, z = amplitude sin²(π nx u) sin²(π ny v) over the
+  /// rectangle's (u, v) ∈ [0, 1]² — bumps[0] × bumps[1] bumps, flat along the boundary.
+  double relief_amplitude = 0.0;
+  std::array<int, 2> relief_bumps{1, 1};
   double radius = 1.0, length = 1.0, opening_angle = 1.0;
   int rings = 8, subdivisions = 3;
 };

@@ -114,7 +114,16 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
     if (const auto f = mesh.find(key)) value = f->positive_number();
   };
   if (kind == "rectangle") {
-    mesh.expect_keys({"generator", "size", "faces", "edge_length", "origin", "diagonals"});
+    mesh.expect_keys({"generator", "size", "faces", "edge_length", "origin", "diagonals", "relief"});
+    if (const auto relief = mesh.find("relief")) {
+      relief->expect_keys({"amplitude", "bumps"});
+      spec.relief_amplitude = relief->require("amplitude", "a height in m, nonzero").number();
+      relief->find("amplitude")->check(spec.relief_amplitude != 0.0, "must be nonzero");
+      if (const auto bumps = relief->find("bumps")) {
+        const std::vector<Field> n = bumps->items(2, "[nx, ny]: bumps along x and y");
+        spec.relief_bumps = {n[0].integer_in(1, 10000), n[1].integer_in(1, 10000)};
+      }
+    }
     spec.generator = G::kRectangle;
     if (const auto d = mesh.find("diagonals")) {
       const std::string name = d->string();

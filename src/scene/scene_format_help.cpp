@@ -25,6 +25,8 @@ geometry:                    required
     {generator: rectangle, size: [w, h], faces: [nx, ny], origin: [x, y], diagonals: d}
         structured, defaults size [1, 1], faces [8, 8], d alternating (or uniform); or
         edge_length: l      an unstructured Delaunay mesh with edges of about l (<= w/2, h/2)
+        relief: {amplitude: a, bumps: [bx, by]}   an embossed rest shape: z = a sin^2(pi bx u)
+                             sin^2(pi by v) over the rectangle's u, v in [0, 1] (bumps default [1, 1])
     {generator: cylinder, radius: r, length: l, faces: [around >= 3, along]}   open, axis z
     {generator: dome, radius: r, opening_angle: a, rings: n}   apex on +z, rim at a in (0, pi)
     {generator: sphere, radius: r, subdivisions: s}   closed icosphere, s in 0..8

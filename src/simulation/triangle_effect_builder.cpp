@@ -2,6 +2,8 @@
 #include "mlshell/triangle/triangle_effect_builder.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "mlshell/effect_builder.hpp"
 #include "mlshell/effects.hpp"
@@ -61,11 +63,21 @@ TriangleMesh build_triangle_mesh(const TriangleMeshSpec& s) {
   switch (s.generator) {
     case G::kObj:
       return read_obj_triangles(s.obj);
-    case G::kRectangle:
-      return s.edge_length ? make_unstructured_rectangle(s.size[0], s.size[1], *s.edge_length,
-                                                         s.origin[0], s.origin[1])
-                           : make_triangle_rectangle(s.size[0], s.size[1], s.faces[0], s.faces[1],
-                                                     s.origin[0], s.origin[1], s.uniform_diagonals);
+    case G::kRectangle: {
+      TriangleMesh mesh =
+          s.edge_length ? make_unstructured_rectangle(s.size[0], s.size[1], *s.edge_length,
+                                                      s.origin[0], s.origin[1])
+                        : make_triangle_rectangle(s.size[0], s.size[1], s.faces[0], s.faces[1],
+                                                  s.origin[0], s.origin[1], s.uniform_diagonals);
+      if (s.relief_amplitude != 0.0)
+        for (Point3& X : mesh.points) {
+          const double u = (X.x() - s.origin[0]) / s.size[0], v = (X.y() - s.origin[1]) / s.size[1];
+          const double bu = std::sin(std::numbers::pi * s.relief_bumps[0] * u);
+          const double bv = std::sin(std::numbers::pi * s.relief_bumps[1] * v);
+          X.z() += s.relief_amplitude * bu * bu * bv * bv;
+        }
+      return mesh;
+    }
     case G::kCylinder:
       return make_cylinder(s.radius, s.length, s.faces[0], s.faces[1]);
     case G::kDome:
