@@ -90,8 +90,8 @@ ShellProlongation::ShellProlongation(const TriangleMesh& coarse_rest,
   const int n = num_fine();
   if (fine_rest.size() != embedding_.size()) {
     std::ostringstream s;
-    s << "ShellProlongation: " << fine_rest.size() << " fine rest points but "
-      << embedding_.size() << " embedded points (one per fine vertex expected)";
+    s << "ShellProlongation: " << fine_rest.size() << " fine rest points but " << embedding_.size()
+      << " embedded points (one per fine vertex expected)";
     throw std::invalid_argument(s.str());
   }
   columns_.resize(n);
@@ -109,8 +109,8 @@ ShellProlongation::ShellProlongation(const TriangleMesh& coarse_rest,
     }
     if (!e.weights.allFinite() || std::abs(e.weights.sum() - 1.0) > 1e-10) {
       std::ostringstream s;
-      s << "barycentric weights (" << e.weights.transpose() << ") in coarse triangle "
-        << e.triangle << " sum to " << e.weights.sum() << ", not 1 (within 1e-10)";
+      s << "barycentric weights (" << e.weights.transpose() << ") in coarse triangle " << e.triangle
+        << " sum to " << e.weights.sum() << ", not 1 (within 1e-10)";
       throw std::invalid_argument(vertex_message(i, s.str()));
     }
     const Triangle& t = coarse_rest.triangles[e.triangle];
@@ -126,8 +126,7 @@ ShellProlongation::ShellProlongation(const TriangleMesh& coarse_rest,
     const Point3 &x0 = coarse_rest.points[t[0]], &x1 = coarse_rest.points[t[1]],
                  &x2 = coarse_rest.points[t[2]];
     const Eigen::Vector3d e1 = x1 - x0, e2 = x2 - x0, cross = e1.cross(e2);
-    const double longest2 =
-        std::max({e1.squaredNorm(), e2.squaredNorm(), (x2 - x1).squaredNorm()});
+    const double longest2 = std::max({e1.squaredNorm(), e2.squaredNorm(), (x2 - x1).squaredNorm()});
     // validate_triangle_mesh's test: twice the area ≤ 1e-12 × the longest edge squared.
     if (!(cross.norm() > 1e-12 * longest2)) {
       std::ostringstream s;
@@ -148,8 +147,7 @@ ShellProlongation::ShellProlongation(const TriangleMesh& coarse_rest,
   }
 }
 
-Point3 ShellProlongation::point(int i, const Point3& x0, const Point3& x1,
-                                const Point3& x2) const {
+Point3 ShellProlongation::point(int i, const Point3& x0, const Point3& x1, const Point3& x2) const {
   const Eigen::Vector3d& w = embedding_[i].weights;
   Matrix32 E;
   E << x1 - x0, x2 - x0;

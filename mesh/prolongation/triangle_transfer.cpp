@@ -71,9 +71,10 @@ ShellTransfer::ShellTransfer(const ParallelLayout& coarse, const ParallelLayout&
   slots_.resize(owned);
   for (int j = 0; j < owned; ++j)
     for (int k = 0; k < 3; ++k)
-      slots_[j][k] = static_cast<int>(
-          std::lower_bound(needed.begin(), needed.end(), prolongation_->columns(fine_natural_[j])[k]) -
-          needed.begin());
+      slots_[j][k] =
+          static_cast<int>(std::lower_bound(needed.begin(), needed.end(),
+                                            prolongation_->columns(fine_natural_[j])[k]) -
+                           needed.begin());
 
   const int n = static_cast<int>(needed.size());
   std::vector<PetscInt> blocks(n);
@@ -112,8 +113,8 @@ ShellTransfer::ShellTransfer(const ParallelLayout& coarse, const ParallelLayout&
                                        PETSC_COPY_VALUES, &is_source));
     PetscCallAbort(comm, ISCreateBlock(PETSC_COMM_SELF, 3, owned_coarse, target.data(),
                                        PETSC_COPY_VALUES, &is_target));
-    PetscCallAbort(comm, VecScatterCreate(fine_template, is_source, coarse_template, is_target,
-                                          &survivors_));
+    PetscCallAbort(
+        comm, VecScatterCreate(fine_template, is_source, coarse_template, is_target, &survivors_));
     PetscCallAbort(comm, ISDestroy(&is_source));
     PetscCallAbort(comm, ISDestroy(&is_target));
     PetscCallAbort(comm, VecDestroy(&fine_template));
@@ -151,8 +152,8 @@ PetscErrorCode ShellTransfer::prolong(Vec coarse, Vec fine) const {
   PetscCall(VecGetArray(fine, &out));
   for (size_t j = 0; j < slots_.size(); ++j) {
     const auto& s = slots_[j];
-    const Point3 p = prolongation_->point(fine_natural_[j], x[s[0]], x[s[1]], x[s[2]]) -
-                     rest_image_[j];
+    const Point3 p =
+        prolongation_->point(fine_natural_[j], x[s[0]], x[s[1]], x[s[2]]) - rest_image_[j];
     for (int c = 0; c < 3; ++c) out[3 * j + c] = p[c];
   }
   PetscCall(VecRestoreArray(fine, &out));
@@ -236,7 +237,8 @@ PetscErrorCode ShellTransfer::jacobian_matrix(Vec x0, Mat* J) const {
   const int owned = static_cast<int>(slots_.size());
   auto column_blocks = [&](int j) {
     std::array<PetscInt, 3> b;
-    for (int k = 0; k < 3; ++k) b[k] = coarse_.petsc_of(prolongation_->columns(fine_natural_[j])[k]);
+    for (int k = 0; k < 3; ++k)
+      b[k] = coarse_.petsc_of(prolongation_->columns(fine_natural_[j])[k]);
     return b;
   };
   if (!J_) {  // the pattern: three coarse blocks per fine block row
@@ -276,8 +278,7 @@ PetscErrorCode ShellTransfer::jacobian_matrix(Vec x0, Mat* J) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ShellTransfer::coarse_operator(Vec x0, Mat fine, MatReuse reuse,
-                                              Mat* coarse) const {
+PetscErrorCode ShellTransfer::coarse_operator(Vec x0, Mat fine, MatReuse reuse, Mat* coarse) const {
   PetscFunctionBeginUser;
   Mat J;
   PetscCall(jacobian_matrix(x0, &J));
