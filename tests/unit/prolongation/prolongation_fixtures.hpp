@@ -6,6 +6,7 @@
 // (γ, t) are not zero.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <utility>
@@ -68,6 +69,19 @@ inline RefinedPair split_one_to_four(
   pair.fine.points = std::move(points);
   pair.coarse_to_fine.resize(nc);
   for (int k = 0; k < nc; ++k) pair.coarse_to_fine[k] = k;
+  return pair;
+}
+
+/// The same pair with the fine vertices numbered backwards, so that a survivor's fine index is
+/// not its coarse one.
+inline RefinedPair with_fine_numbering_reversed(RefinedPair pair) {
+  const int nf = pair.fine.num_points();
+  auto flip = [nf](int i) { return nf - 1 - i; };
+  std::reverse(pair.fine.points.begin(), pair.fine.points.end());
+  std::reverse(pair.embedding.begin(), pair.embedding.end());
+  for (Triangle& t : pair.fine.triangles)
+    for (int& v : t) v = flip(v);
+  for (int& m : pair.coarse_to_fine) m = flip(m);
   return pair;
 }
 

@@ -90,7 +90,7 @@ void destroy(std::initializer_list<Vec*> vectors) {
 }
 
 void check_prolong_matches_the_kernel() {
-  TwoLevels t(sphere_pair(2, true));
+  TwoLevels t(with_fine_numbering_reversed(sphere_pair(2, true)));
   const std::vector<double> uc = wave(3 * t.nc(), 0.1, 0.3);
   Vec c = t.coarse_vector(uc), f, zero;
   t.fine->create_vector(&f);
@@ -222,7 +222,7 @@ void check_correction_vanishes_at_the_start() {
 
 void check_projection() {
   for (const bool moved : {false, true}) {
-    TwoLevels t(sphere_pair(2, moved));
+    TwoLevels t(with_fine_numbering_reversed(sphere_pair(2, moved)));
     Vec uc, f, back;
     t.coarse->create_vector(&uc);
     t.coarse->create_vector(&back);
