@@ -377,6 +377,22 @@ MUTATIONS = [
      "  PetscCallAbort(comm, TaoSetConvergenceTest(tao_, floor_then_default_test, &floor_));\n",
      "",
      "TAO solvers never see the energy floor (only SNES and bnls's line-search error stop)", ()),
+    ("shell-jacobian-normal-turn-dropped", "mesh/prolongation/shell_prolongation.cpp",
+     "const Eigen::Matrix3d da = a_direct[j] + K * dn;",
+     "const Eigen::Matrix3d da = a_direct[j];",
+     "the shell prolongation's Jacobian misses the in-plane offset's turn with the normal "
+     "(J_P no longer the derivative of P)", ()),
+    ("shell-tangent-frame-flipped", "mesh/prolongation/shell_prolongation.cpp",
+     "normal.cross(edge).dot(d)", "edge.cross(normal).dot(d)",
+     "the rest offsets t are written in a frame whose second axis is turned over: P(x̄_c) no "
+     "longer recovers the fine rest shape", ()),
+    ("shell-restriction-inserts", "mesh/prolongation/triangle_transfer.cpp",
+     "  PetscCall(VecScatterBegin(gather_, gathered_, coarse_gradient, ADD_VALUES, SCATTER_REVERSE));\n"
+     "  PetscCall(VecScatterEnd(gather_, gathered_, coarse_gradient, ADD_VALUES, SCATTER_REVERSE));",
+     "  PetscCall(VecScatterBegin(gather_, gathered_, coarse_gradient, INSERT_VALUES, SCATTER_REVERSE));\n"
+     "  PetscCall(VecScatterEnd(gather_, gathered_, coarse_gradient, INSERT_VALUES, SCATTER_REVERSE));",
+     "the shell transfer's restriction keeps one rank's share of a coarse vertex's gradient "
+     "(J_Pᵀ g wrong on 2 ranks: mpi.two_ranks)", ()),
 ]
 
 

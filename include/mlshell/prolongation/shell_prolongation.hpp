@@ -21,6 +21,12 @@
 
 namespace mlshell {
 
+/// R(F) of footnote 2 for a 3×2 F: the 3×2 factor with orthonormal columns nearest to F,
+/// U (I₂ 0)ᵀ Vᵀ with F = U Σ Vᵀ, in closed form (F + (n × F) Jᵀ)/(σ₁ + σ₂), n the unit normal of
+/// F's columns and J the 90° rotation of the plane. For F of rank 1 (σ₂ ≤ 1e-12 σ₁, up to the
+/// constant) it is F/‖F‖_F; for F = 0 (‖F‖_F ≤ 1e-12), zero.
+Eigen::Matrix<double, 3, 2> polar_rotation(const Eigen::Matrix<double, 3, 2>& F);
+
 class ShellProlongation {
  public:
   using Jacobian = Eigen::Matrix<double, 3, 9>;  ///< ∂P_i/∂(x_{c_0}, x_{c_1}, x_{c_2})
