@@ -135,7 +135,8 @@ Keep choose(const State& s, const Profile& profile) {
     if (removable0) return Keep::kV1;
     return Keep::kRefused;
   }
-  if (b0 && b1) return Keep::kRefused;  // an interior edge joining two boundary vertices
+  // An interior edge joining two boundary vertices (CGAL's link test refuses it too).
+  if (b0 && b1) return Keep::kRefused;
   if (b0) return g1 ? Keep::kRefused : Keep::kV0;
   if (b1) return g0 ? Keep::kRefused : Keep::kV1;
   if (g0 && g1) return Keep::kRefused;

@@ -377,6 +377,18 @@ MUTATIONS = [
      "  PetscCallAbort(comm, TaoSetConvergenceTest(tao_, floor_then_default_test, &floor_));\n",
      "",
      "TAO solvers never see the energy floor (only SNES and bnls's line-search error stop)", ()),
+    ("decimation-boundary-not-straight", "mesh/decimation/decimation.cpp",
+     "    return (p - a - t * ac).norm() <= tolerance * std::sqrt(length2);\n",
+     "    return true;\n",
+     "decimation removes boundary vertices off straight sides: corners go, a dome's rim is cut",
+     ()),
+    ("decimation-group-vertex-moves", "mesh/decimation/decimation.cpp",
+     "  if (g0) return Keep::kV0;\n", "",
+     "an interior group vertex at an edge's first end moves to the quadric's placement or goes",
+     ()),
+    ("decimation-slivers-allowed", "mesh/decimation/decimation.cpp",
+     "      if (min_angle(after[0], after[1], after[2]) < bound) return boost::none;\n", "",
+     "decimation makes triangles with angles below min_angle_degrees", ()),
 ]
 
 

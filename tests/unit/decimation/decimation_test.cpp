@@ -200,7 +200,7 @@ int expect_boundary_kept(const DecimationHierarchy& h, const TriangleMesh& fine,
       const int v = loops[k][i];
       loop_of[v] = k, position[v] = i;
       corner[v] = !on_segment(fine.points[v], fine.points[loops[k][(i + n - 1) % n]],
-                              fine.points[loops[k][(i + 1) % n]], 1e-9);
+                              fine.points[loops[k][(i + 1) % n]], tolerance + 1e-12);
     }
   int lost = 0;
   for (int l = 0; l + 1 < h.num_levels(); ++l) {
@@ -288,6 +288,53 @@ TEST(Decimation, DomeKeepsItsCurvedRimAndFacesOutwards) {
   expect_valid_levels(h, fine, o);
   EXPECT_EQ(expect_boundary_kept(h, fine, o.boundary_straightness), 0);
   expect_no_folds_or_slivers(h, fine, o, [](const Point3& c) { return c.normalized(); });
+}
+
+TEST(Decimation, BoundaryVerticesOffTheSegmentStayWithinTheStraightnessTolerance) {
+  // A square plate whose every second side vertex sticks out by 1e-5 of a cell (in the plane):
+  // no side vertex lies on the segment of its neighbours within 1e-6 of its length, so none may
+  // go however cheap its collapse, and 36 vertices (fewer than the 120 on the sides) are out of
+  // reach; with boundary_straightness 1e-3 the sides coarsen again.
+  const int n = 30;
+  TriangleMesh fine = make_triangle_rectangle(1.0, 1.0, n, n);
+  fine.groups.clear();
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const bool side_x = i == 0 || i == n, side_y = j == 0 || j == n;
+      if (side_x == side_y || (i + j) % 2 == 0) continue;  // interior, corner, or unmoved
+      Point3& p = fine.points[j * (n + 1) + i];
+      const double bump = 1e-5 / n;
+      if (side_x) p.x() += i == 0 ? -bump : bump;
+      if (side_y) p.y() += j == 0 ? -bump : bump;
+    }
+  DecimationOptions o = DecimationOptions::by_ratio(fine.num_points(), 4, 3.0);
+  ASSERT_EQ(o.vertices.back(), 36);
+  EXPECT_THROW(decimate(fine, o), MeshError);
+  const std::vector<int> targets = o.vertices;
+  o.vertices = {320, 160};
+  const DecimationHierarchy strict = decimate(fine, o);
+  EXPECT_EQ(expect_boundary_kept(strict, fine, o.boundary_straightness), 0);
+  o.boundary_straightness = 1e-3;
+  o.vertices = targets;
+  const DecimationHierarchy loose = decimate(fine, o);
+  expect_valid_levels(loose, fine, o);
+  EXPECT_GT(expect_boundary_kept(loose, fine, o.boundary_straightness), 60);
+}
+
+TEST(Decimation, NormalChangeBoundRefusesCollapsesOnCurvedSurfacesOnly) {
+  // On an icosphere of 642 vertices every collapse turns some normal by degrees: a bound of
+  // 0.5° leaves the target out of reach. On a flat plate no normal turns.
+  DecimationOptions o;
+  o.max_normal_change_degrees = 0.5;
+  const TriangleMesh sphere = make_sphere(1.0, 3);
+  o.vertices = {400};
+  EXPECT_THROW(decimate(sphere, o), MeshError);
+  o.max_normal_change_degrees = 60;
+  EXPECT_NO_THROW(decimate(sphere, o));
+  o.max_normal_change_degrees = 0.5;
+  TriangleMesh plate = make_unstructured_rectangle(1.0, 1.0, 0.05);
+  o.vertices = {plate.num_points() / 2};
+  EXPECT_NO_THROW(decimate(plate, o));
 }
 
 TEST(Decimation, RecordsReplayEveryLevelAndExpandBackToTheFineMesh) {
