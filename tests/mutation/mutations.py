@@ -393,6 +393,18 @@ MUTATIONS = [
      "  PetscCall(VecScatterEnd(gather_, gathered_, coarse_gradient, INSERT_VALUES, SCATTER_REVERSE));",
      "the shell transfer's restriction keeps one rank's share of a coarse vertex's gradient "
      "(J_Pᵀ g wrong on 2 ranks: mpi.two_ranks)", ()),
+    ("decimation-boundary-not-straight", "mesh/decimation/decimation.cpp",
+     "    return (p - a - t * ac).norm() <= tolerance * std::sqrt(length2);\n",
+     "    return true;\n",
+     "decimation removes boundary vertices off straight sides: corners go, a dome's rim is cut",
+     ()),
+    ("decimation-group-vertex-moves", "mesh/decimation/decimation.cpp",
+     "  if (g0) return Keep::kV0;\n", "",
+     "an interior group vertex at an edge's first end moves to the quadric's placement or goes",
+     ()),
+    ("decimation-slivers-allowed", "mesh/decimation/decimation.cpp",
+     "      if (min_angle(after[0], after[1], after[2]) < bound) return boost::none;\n", "",
+     "decimation makes triangles with angles below min_angle_degrees", ()),
 ]
 
 
