@@ -11,8 +11,10 @@
 // CGAL on the other vertex of the edge: the survivor then takes the pinned vertex's index).
 //
 // Rules, each a refusal of one collapse (the edge comes back when its neighbourhood changes):
-//   placement (Choice): a vertex of a group is never removed nor moved; a boundary vertex is
-//     never moved, and removed only along a boundary edge where it lies on the segment of its
+//   placement (Choice): a vertex of a group is never moved, and removed only into a neighbour
+//     that belongs to exactly the same groups (so a side group loses vertices along its side,
+//     a group never loses all of them, and a one-vertex group keeps its vertex); a boundary
+//     vertex is never moved, and removed only along a boundary edge where it lies on the segment of its
 //     two boundary neighbours (within boundary_straightness × the segment's length), so the
 //     boundary keeps the fine boundary's shape and its corners; an interior edge with both ends
 //     on the boundary is never collapsed (it would pinch or merge boundary loops), nor a
@@ -37,6 +39,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -85,7 +88,7 @@ struct State {
   const DecimationOptions* options = nullptr;
   std::vector<int> fine_of;       ///< Surface_mesh vertex index → finest-mesh vertex
   std::vector<char> boundary;     ///< by finest vertex: on the (fine = every level's) boundary
-  std::vector<char> in_group;     ///< by finest vertex: in some group
+  std::vector<int> group_set;     ///< by finest vertex: 0, or an id of the set of its groups
   std::vector<int> loop_of;       ///< by finest vertex: its boundary loop, or -1
   std::vector<int> loop_size;     ///< current vertex count of each boundary loop
   int num_vertices = 0;           ///< vertices left in the Surface_mesh
@@ -124,12 +127,14 @@ Keep choose(const State& s, const Profile& profile) {
   const Mesh& mesh = profile.surface_mesh();
   const int f0 = s.fine_of[profile.v0()], f1 = s.fine_of[profile.v1()];
   const bool b0 = s.boundary[f0], b1 = s.boundary[f1];
-  const bool g0 = s.in_group[f0], g1 = s.in_group[f1];
+  const int g0 = s.group_set[f0], g1 = s.group_set[f1];
+  // A group vertex goes only into a vertex of the same groups; it never moves.
+  const bool free0 = g0 == 0 || g0 == g1, free1 = g1 == 0 || g1 == g0;
   if (profile.is_v0_v1_a_border() || profile.is_v1_v0_a_border()) {
     if (s.loop_size[s.loop_of[f0]] <= 3) return Keep::kRefused;
     const double tol = s.options->boundary_straightness;
-    const bool removable0 = !g0 && straight(mesh, profile.v0(), tol);
-    const bool removable1 = !g1 && straight(mesh, profile.v1(), tol);
+    const bool removable0 = free0 && straight(mesh, profile.v0(), tol);
+    const bool removable1 = free1 && straight(mesh, profile.v1(), tol);
     if (removable0 && removable1) return Keep::kEither;
     if (removable1) return Keep::kV0;
     if (removable0) return Keep::kV1;
@@ -137,11 +142,11 @@ Keep choose(const State& s, const Profile& profile) {
   }
   // An interior edge joining two boundary vertices (CGAL's link test refuses it too).
   if (b0 && b1) return Keep::kRefused;
-  if (b0) return g1 ? Keep::kRefused : Keep::kV0;
-  if (b1) return g0 ? Keep::kRefused : Keep::kV1;
-  if (g0 && g1) return Keep::kRefused;
-  if (g0) return Keep::kV0;
-  if (g1) return Keep::kV1;
+  if (b0) return free1 ? Keep::kV0 : Keep::kRefused;
+  if (b1) return free0 ? Keep::kV1 : Keep::kRefused;
+  if (g0 != 0 && g1 != 0) return g0 == g1 ? Keep::kV0 : Keep::kRefused;
+  if (g0 != 0) return Keep::kV0;
+  if (g1 != 0) return Keep::kV1;
   return Keep::kFree;
 }
 
@@ -416,9 +421,19 @@ DecimationHierarchy decimate(const TriangleMesh& fine, const DecimationOptions& 
   s.fine_of.resize(fine.points.size());
   for (int v = 0; v < fine.num_points(); ++v) s.fine_of[v] = v;
   s.boundary = topology.boundary_vertices();
-  s.in_group.assign(fine.points.size(), 0);
-  for (const auto& [name, vertices] : fine.groups)
-    for (int v : vertices) s.in_group[v] = 1;
+  {  // number the distinct sets of groups the vertices belong to (1, 2, ...)
+    std::vector<std::vector<int>> groups_of(fine.points.size());
+    int g = 0;
+    for (const auto& [name, vertices] : fine.groups) {
+      for (int v : vertices) groups_of[v].push_back(g);
+      ++g;
+    }
+    std::map<std::vector<int>, int> ids;
+    s.group_set.assign(fine.points.size(), 0);
+    for (size_t v = 0; v < groups_of.size(); ++v)
+      if (!groups_of[v].empty())
+        s.group_set[v] = ids.emplace(groups_of[v], static_cast<int>(ids.size()) + 1).first->second;
+  }
   s.loop_of.assign(fine.points.size(), -1);
   for (int l = 0; l < num_loops; ++l) {
     for (int v : topology.boundary_loops()[l]) s.loop_of[v] = l;

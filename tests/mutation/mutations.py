@@ -399,7 +399,7 @@ MUTATIONS = [
      "decimation removes boundary vertices off straight sides: corners go, a dome's rim is cut",
      ()),
     ("decimation-group-vertex-moves", "mesh/decimation/decimation.cpp",
-     "  if (g0) return Keep::kV0;\n", "",
+     "  if (g0 != 0) return Keep::kV0;\n", "",
      "an interior group vertex at an edge's first end moves to the quadric's placement or goes",
      ()),
     ("decimation-slivers-allowed", "mesh/decimation/decimation.cpp",
