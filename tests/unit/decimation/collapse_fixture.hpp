@@ -181,9 +181,12 @@ class CollapseSequence {
       }
     for (size_t t = 0; t < triangles_.size(); ++t)
       if (triangle_alive_[t]) {
-        Triangle tri = triangles_[t];
-        for (int& v : tri) v = renumber[v];
-        level.mesh.triangles.push_back(tri);
+        // Corners turned by t mod 3 (orientation kept): a level need not list a triangle's
+        // corners in the order the records do.
+        const Triangle& tri = triangles_[t];
+        Triangle turned;
+        for (int k = 0; k < 3; ++k) turned[k] = renumber[tri[(k + t) % 3]];
+        level.mesh.triangles.push_back(turned);
       }
     level.num_records = num_records();
     return level;
