@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <numbers>
 
 #include "decimation/collapse_fixture.hpp"
 #include "mlshell/triangle/triangle_generators.hpp"
@@ -222,6 +223,60 @@ TEST(IntrinsicEmbedding, FoldedChartFallsBack) {
   // The kernel chart covers the link polygon as the before chart does: nothing is snapped.
   EXPECT_EQ(report.snapped_points, 0);
   EXPECT_LT(report.largest_snap, 1e-12);
+}
+
+TEST(IntrinsicEmbedding, WavyLinkFallsBackToTutte) {
+  // One interior edge (0, 0, 0)–(1, 0, 0) whose link of ten vertices around it zigzags up and
+  // down by ±1: the LSCM chart of so much angle excess folds, and the link laid out by it is
+  // seen counter-clockwise from no point (an empty kernel), so the collapse gets Tutte's chart
+  // (link on a circle), which covers the same polygon before and after.
+  const int m = 10, j = m / 2;
+  TriangleMesh ring;
+  ring.points = {Point3(0, 0, 0), Point3(1, 0, 0)};
+  for (int i = 0; i < m; ++i) {
+    const double angle = std::numbers::pi / 2 + 2 * std::numbers::pi * i / m;
+    ring.points.emplace_back(0.5 + 1.5 * std::cos(angle), 1.5 * std::sin(angle), i % 2 ? 1.0 : -1.0);
+  }
+  const auto link = [&](int i) { return 2 + i % m; };
+  ring.triangles = {{0, 1, link(0)}, {1, 0, link(j)}};
+  for (int i = 0; i < j; ++i) ring.triangles.push_back({0, link(i), link(i + 1)});
+  for (int i = j; i < m; ++i) ring.triangles.push_back({1, link(i), link(i + 1)});
+  CollapseSequence s(ring);
+  DecimationHierarchy h;
+  h.levels.push_back(s.level());
+  s.collapse(0, 1, Point3(0.5, 0.0, 0.0));
+  h.levels.push_back(s.level());
+  std::reverse(h.levels.begin(), h.levels.end());
+  h.records = s.records();
+  EmbeddingReport report;
+  const auto points = intrinsic_embedding(h, 0, 1, &report);
+  expect_valid(h, 0, 1, points);
+  EXPECT_EQ(report.fallback_charts, 1);
+  EXPECT_EQ(report.snapped_points, 0);
+  // Tutte's chart by hand: link vertex i at angle 2πi/m on the unit circle, the removed and
+  // kept vertices at the average of their neighbours, the kept one at the circle's centre after.
+  std::vector<Eigen::Vector2d> circle(m);
+  for (int i = 0; i < m; ++i)
+    circle[i] = {std::cos(2 * std::numbers::pi * i / m), std::sin(2 * std::numbers::pi * i / m)};
+  Eigen::Vector2d around_removed = Eigen::Vector2d::Zero(), around_kept = Eigen::Vector2d::Zero();
+  for (int i = 0; i <= j; ++i) around_removed += circle[i];
+  for (int i = j; i <= m; ++i) around_kept += circle[i % m];
+  // 7 r − k = Σ, 7 k − r = Σ' (each has six link neighbours and the other).
+  const Eigen::Vector2d removed = (7.0 * around_removed + around_kept) / 48.0;
+  Point3 expected = Point3::Zero();
+  int found = 0;
+  for (int i = 0; i < m; ++i) {
+    const Eigen::Vector2d a = circle[i], b = circle[(i + 1) % m];
+    const double area = a.x() * b.y() - a.y() * b.x();  // (0, a, b), twice its area
+    const double wa = (removed.x() * b.y() - removed.y() * b.x()) / area;
+    const double wb = (a.x() * removed.y() - a.y() * removed.x()) / area;
+    if (wa < 0 || wb < 0 || wa + wb > 1) continue;
+    ++found;
+    const auto& x = h.levels[0].mesh.points;  // coarse: kept = 0, link i = 1 + i
+    expected = (1 - wa - wb) * x[0] + wa * x[1 + i] + wb * x[1 + (i + 1) % m];
+  }
+  ASSERT_EQ(found, 1);
+  EXPECT_LT((embedded_position(h, 0, points[0]) - expected).norm(), 1e-12);
 }
 
 TEST(IntrinsicEmbedding, RejectsLevelsOutOfOrder) {
