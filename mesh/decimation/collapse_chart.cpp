@@ -155,7 +155,7 @@ bool CollapseChart::place_kept_lscm() {
   }
   if (!(diagonal > 0.0)) return false;
   kept_after_ = rhs / diagonal;
-  return kept_after_.allFinite() && before_[0].allFinite() &&
+  return kept_after_.allFinite() &&
          std::all_of(before_.begin(), before_.end(), [](const auto& p) { return p.allFinite(); });
 }
 

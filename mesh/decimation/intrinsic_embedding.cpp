@@ -12,6 +12,8 @@
 #include "mlshell/decimation/intrinsic_embedding.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>

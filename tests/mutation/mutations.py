@@ -377,6 +377,14 @@ MUTATIONS = [
      "  PetscCallAbort(comm, TaoSetConvergenceTest(tao_, floor_then_default_test, &floor_));\n",
      "",
      "TAO solvers never see the energy floor (only SNES and bnls's line-search error stop)", ()),
+    ("embedding-kept-never-moves", "mesh/decimation/intrinsic_embedding.cpp",
+     "    position[record.kept] = record.placement;\n", "",
+     "the intrinsic embedding flattens each collapse's one-ring with kept vertices where the fine "
+     "mesh had them, not where earlier collapses placed them", ()),
+    ("collapse-chart-fold-unchecked", "mesh/decimation/collapse_chart.cpp",
+     "  bool ok = place_kept_lscm() && after_valid();", "  bool ok = place_kept_lscm();",
+     "a collapse whose LSCM after chart folds keeps it (points snapped across the fold, no "
+     "kernel or Tutte chart, fallback_charts 0)", ()),
 ]
 
 
