@@ -405,6 +405,14 @@ MUTATIONS = [
     ("decimation-slivers-allowed", "mesh/decimation/decimation.cpp",
      "      if (min_angle(after[0], after[1], after[2]) < bound) return boost::none;\n", "",
      "decimation makes triangles with angles below min_angle_degrees", ()),
+    ("embedding-kept-never-moves", "mesh/decimation/intrinsic_embedding.cpp",
+     "    position[record.kept] = record.placement;\n", "",
+     "the intrinsic embedding flattens each collapse's one-ring with kept vertices where the fine "
+     "mesh had them, not where earlier collapses placed them", ()),
+    ("collapse-chart-fold-unchecked", "mesh/decimation/collapse_chart.cpp",
+     "  bool ok = place_kept_lscm() && after_valid();", "  bool ok = place_kept_lscm();",
+     "a collapse whose LSCM after chart folds keeps it (points snapped across the fold, no "
+     "kernel or Tutte chart, fallback_charts 0)", ()),
 ]
 
 
