@@ -1,6 +1,7 @@
 // d = |(e0 − p) × (e1 − p)|² / |e1 − e0|² (see point_line.hpp).
 #include "mlshell/contact/distance/point_line.hpp"
 
+#include <Eigen/Geometry>
 #include <stdexcept>
 
 #include "vector_products.hpp"
