@@ -54,9 +54,9 @@ double initial_barrier_stiffness(const ContactBarrier& barrier, double bbox_diag
                                    max_stiffness, scale);
 }
 
-double update_barrier_stiffness(double prev_min_distance, double min_distance,
-                                double max_stiffness, double stiffness, double bbox_diagonal,
-                                double thickness, double epsilon) {
+double update_barrier_stiffness(double prev_min_distance, double min_distance, double max_stiffness,
+                                double stiffness, double bbox_diagonal, double thickness,
+                                double epsilon) {
   const double reach = thickness + epsilon * bbox_diagonal;
   const double near = reach * reach;
   if (prev_min_distance < near && min_distance < near && min_distance < prev_min_distance)

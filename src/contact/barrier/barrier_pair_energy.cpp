@@ -34,16 +34,17 @@ template double barrier_pair_energy<12>(double, const ContactBarrier&, double, c
 
 double mollified_barrier_pair_energy(double kappa, const ContactBarrier& barrier, double d,
                                      const Vector12& grad_d, const Matrix12& hess_d, double m,
-                                     const Vector12& grad_m, const Matrix12& hess_m,
-                                     Vector12* grad, Matrix12* hess, bool project) {
+                                     const Vector12& grad_m, const Matrix12& hess_m, Vector12* grad,
+                                     Matrix12* hess, bool project) {
   const double b = barrier.value(d);
   if (!std::isfinite(b)) return std::numeric_limits<double>::infinity();
   const double db = barrier.first_derivative(d);
   if (grad) *grad = kappa * (b * grad_m + m * db * grad_d);
   if (hess) {
     const Matrix12 cross = grad_m * grad_d.transpose();
-    *hess = kappa * (b * hess_m + db * (cross + cross.transpose()) +
-                     m * (barrier.second_derivative(d) * grad_d * grad_d.transpose() + db * hess_d));
+    *hess =
+        kappa * (b * hess_m + db * (cross + cross.transpose()) +
+                 m * (barrier.second_derivative(d) * grad_d * grad_d.transpose() + db * hess_d));
     if (project) project_to_psd(*hess);
   }
   return kappa * m * b;

@@ -19,21 +19,30 @@ namespace {
 /// The stencil of each non-line–line type: the local function's vertices (point first) as
 /// vertices of (ea0, ea1, eb0, eb1).
 struct Stencil {
-  int size;      // 2: point–point, 3: point–line
+  int size;  // 2: point–point, 3: point–line
   int to[3];
 };
 
 Stencil stencil_of(Type type) {
   switch (type) {
-    case Type::EA0_EB0: return {2, {0, 2, -1}};
-    case Type::EA0_EB1: return {2, {0, 3, -1}};
-    case Type::EA1_EB0: return {2, {1, 2, -1}};
-    case Type::EA1_EB1: return {2, {1, 3, -1}};
-    case Type::EA_EB0: return {3, {2, 0, 1}};
-    case Type::EA_EB1: return {3, {3, 0, 1}};
-    case Type::EA0_EB: return {3, {0, 2, 3}};
-    case Type::EA1_EB: return {3, {1, 2, 3}};
-    case Type::EA_EB: break;
+    case Type::EA0_EB0:
+      return {2, {0, 2, -1}};
+    case Type::EA0_EB1:
+      return {2, {0, 3, -1}};
+    case Type::EA1_EB0:
+      return {2, {1, 2, -1}};
+    case Type::EA1_EB1:
+      return {2, {1, 3, -1}};
+    case Type::EA_EB0:
+      return {3, {2, 0, 1}};
+    case Type::EA_EB1:
+      return {3, {3, 0, 1}};
+    case Type::EA0_EB:
+      return {3, {0, 2, 3}};
+    case Type::EA1_EB:
+      return {3, {1, 2, 3}};
+    case Type::EA_EB:
+      break;
   }
   return {4, {-1, -1, -1}};
 }
@@ -57,11 +66,10 @@ EdgeEdgeDistanceType edge_edge_distance_type(const Eigen::Vector3d& ea0, const E
     const Eigen::Vector3d &p, &e0, &e1;
     Type at_e0, at_e1, inside;
   };
-  const Candidate candidates[4] = {
-      {ea0, eb0, eb1, Type::EA0_EB0, Type::EA0_EB1, Type::EA0_EB},
-      {ea1, eb0, eb1, Type::EA1_EB0, Type::EA1_EB1, Type::EA1_EB},
-      {eb0, ea0, ea1, Type::EA0_EB0, Type::EA1_EB0, Type::EA_EB0},
-      {eb1, ea0, ea1, Type::EA0_EB1, Type::EA1_EB1, Type::EA_EB1}};
+  const Candidate candidates[4] = {{ea0, eb0, eb1, Type::EA0_EB0, Type::EA0_EB1, Type::EA0_EB},
+                                   {ea1, eb0, eb1, Type::EA1_EB0, Type::EA1_EB1, Type::EA1_EB},
+                                   {eb0, ea0, ea1, Type::EA0_EB0, Type::EA1_EB0, Type::EA_EB0},
+                                   {eb1, ea0, ea1, Type::EA0_EB1, Type::EA1_EB1, Type::EA_EB1}};
   double best = 0.0;
   Type type = Type::EA0_EB0;
   for (int i = 0; i < 4; ++i) {

@@ -12,8 +12,8 @@ double line_line_distance(const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1
                           Matrix12* hess) {
   Vector9 gy;
   Matrix9 hy;
-  const double d = squared_normal_component(eb0 - ea0, ea1 - ea0, eb1 - eb0,
-                                            grad ? &gy : nullptr, hess ? &hy : nullptr);
+  const double d = squared_normal_component(eb0 - ea0, ea1 - ea0, eb1 - eb0, grad ? &gy : nullptr,
+                                            hess ? &hy : nullptr);
   // w = eb0 − ea0, u = ea1 − ea0, v = eb1 − eb0.
   Eigen::Matrix<double, 3, 4> C;
   C << -1, 0, 1, 0, -1, 1, 0, 0, 0, 0, -1, 1;

@@ -25,7 +25,8 @@ double point_edge_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& e0,
   const bool first = type == PointEdgeDistanceType::P_E0;
   Vector6 g;
   Matrix6 H;
-  const double d = point_point_distance(p, first ? e0 : e1, grad ? &g : nullptr, hess ? &H : nullptr);
+  const double d =
+      point_point_distance(p, first ? e0 : e1, grad ? &g : nullptr, hess ? &H : nullptr);
   const int to[2] = {0, first ? 1 : 2};
   scatter<2, 3>(g, H, to, grad, hess);
   return d;

@@ -3,10 +3,10 @@
 
 #include <Eigen/Geometry>
 
+#include "mlshell/contact/distance/point_edge.hpp"
 #include "mlshell/contact/distance/point_line.hpp"
 #include "mlshell/contact/distance/point_plane.hpp"
 #include "mlshell/contact/distance/point_point.hpp"
-#include "mlshell/contact/distance/point_edge.hpp"
 #include "vector_products.hpp"
 
 namespace mlshell {
@@ -35,8 +35,10 @@ PointTriangleDistanceType point_triangle_distance_type(const Eigen::Vector3d& p,
     const double d = point_edge_distance(p, a, b, on);
     if (i > 0 && !(d < best)) continue;
     best = d;
-    if (on == PointEdgeDistanceType::P_E) type = static_cast<Type>(static_cast<int>(Type::P_E0) + i);
-    else type = static_cast<Type>(on == PointEdgeDistanceType::P_E0 ? i : (i + 1) % 3);
+    if (on == PointEdgeDistanceType::P_E)
+      type = static_cast<Type>(static_cast<int>(Type::P_E0) + i);
+    else
+      type = static_cast<Type>(on == PointEdgeDistanceType::P_E0 ? i : (i + 1) % 3);
   }
   return type;
 }

@@ -18,7 +18,8 @@ double cross_squared_norm(const Eigen::Vector3d& u, const Eigen::Vector3d& v, Ve
   if (grad) *grad << 2.0 * v.cross(n), 2.0 * n.cross(u);
   if (hess) {
     const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-    const Eigen::Matrix3d uv = 4.0 * u * v.transpose() - 2.0 * v * u.transpose() - 2.0 * u.dot(v) * I;
+    const Eigen::Matrix3d uv =
+        4.0 * u * v.transpose() - 2.0 * v * u.transpose() - 2.0 * u.dot(v) * I;
     hess->block<3, 3>(0, 0) = 2.0 * (v.squaredNorm() * I - v * v.transpose());
     hess->block<3, 3>(3, 3) = 2.0 * (u.squaredNorm() * I - u * u.transpose());
     hess->block<3, 3>(0, 3) = uv;

@@ -44,7 +44,8 @@ template <int K, int N>
 Eigen::Matrix<double, 3 * K, 3 * N> difference_map(const Eigen::Matrix<double, K, N>& C) {
   Eigen::Matrix<double, 3 * K, 3 * N> A = Eigen::Matrix<double, 3 * K, 3 * N>::Zero();
   for (int i = 0; i < K; ++i)
-    for (int j = 0; j < N; ++j) A.template block<3, 3>(3 * i, 3 * j).diagonal().setConstant(C(i, j));
+    for (int j = 0; j < N; ++j)
+      A.template block<3, 3>(3 * i, 3 * j).diagonal().setConstant(C(i, j));
   return A;
 }
 
@@ -53,8 +54,9 @@ Eigen::Matrix<double, 3 * K, 3 * N> difference_map(const Eigen::Matrix<double, K
 template <int N>
 double quotient(double a, const Eigen::Matrix<double, N, 1>& grad_a,
                 const Eigen::Matrix<double, N, N>& hess_a, double b,
-                const Eigen::Matrix<double, N, 1>& grad_b, const Eigen::Matrix<double, N, N>& hess_b,
-                Eigen::Matrix<double, N, 1>* grad, Eigen::Matrix<double, N, N>* hess) {
+                const Eigen::Matrix<double, N, 1>& grad_b,
+                const Eigen::Matrix<double, N, N>& hess_b, Eigen::Matrix<double, N, 1>* grad,
+                Eigen::Matrix<double, N, N>* hess) {
   const double q = a / b;
   const Eigen::Matrix<double, N, 1> gq = (grad_a - q * grad_b) / b;
   if (grad) *grad = gq;

@@ -17,10 +17,10 @@
 #include "mlshell/contact/distance/point_triangle.hpp"
 
 using namespace mlshell;
+using Eigen::Vector3d;
 using mlshell::test::expect_derivatives;
 using mlshell::test::stack;
 using mlshell::test::vertex;
-using Eigen::Vector3d;
 
 namespace {
 
@@ -70,11 +70,12 @@ TEST(ContactPairEnergy, MollifiedEdgeEdgeDerivatives) {
   for (double theta : {0.005, 0.02}) {
     const Vector12 x = stack(Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.2, -0.02, 0.12),
                              Vector3d(0.2 + std::cos(theta), -0.02 + std::sin(theta), 0.12));
-    const double eps_x = edge_edge_mollifier_threshold(vertex(x, 0), vertex(x, 1), vertex(x, 2),
-                                                       vertex(x, 3));
-    ASSERT_TRUE(edge_edge_mollifier_active(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3),
-                                           eps_x));
-    const auto type = edge_edge_distance_type(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3));
+    const double eps_x =
+        edge_edge_mollifier_threshold(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3));
+    ASSERT_TRUE(
+        edge_edge_mollifier_active(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3), eps_x));
+    const auto type =
+        edge_edge_distance_type(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3));
     ASSERT_GT(edge_edge_energy(x, type, eps_x, nullptr, nullptr, false), 0.0);
     expect_derivatives<12>(
         [&](const Vector12& y, Vector12* g, Matrix12* H) {
@@ -88,9 +89,9 @@ TEST(ContactPairEnergy, InfiniteInsideThicknessWritesNothing) {
   const Vector3d p(0.2, 0.3, 0.099), t0(0, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
   Vector12 g = Vector12::Constant(7.0);
   Matrix12 H = Matrix12::Constant(7.0);
-  EXPECT_EQ(point_triangle_energy(stack(p, t0, t1, t2), PointTriangleDistanceType::P_T, &g, &H,
-                                  true),
-            std::numeric_limits<double>::infinity());
+  EXPECT_EQ(
+      point_triangle_energy(stack(p, t0, t1, t2), PointTriangleDistanceType::P_T, &g, &H, true),
+      std::numeric_limits<double>::infinity());
   EXPECT_EQ(g, Vector12::Constant(7.0));
   EXPECT_EQ(H, Matrix12::Constant(7.0));
 }
@@ -99,8 +100,8 @@ TEST(ContactPairEnergy, ProjectedHessianIsPositiveSemiDefinite) {
   // b' < 0 times the convex ∇²d makes the exact pair Hessian indefinite (checked below), at
   // the plane, edge and vertex types alike.
   const Vector3d t0(0, 0, 0), t1(1, 0, 0), t2(0, 1, 0);
-  for (const Vector3d& p : {Vector3d(0.5, -0.05, 0.1), Vector3d(0.2, 0.3, 0.12),
-                            Vector3d(-0.06, -0.05, 0.09)}) {
+  for (const Vector3d& p :
+       {Vector3d(0.5, -0.05, 0.1), Vector3d(0.2, 0.3, 0.12), Vector3d(-0.06, -0.05, 0.09)}) {
     const Vector12 x = stack(p, t0, t1, t2);
     const auto type = point_triangle_distance_type(p, t0, t1, t2);
     Matrix12 exact, projected;

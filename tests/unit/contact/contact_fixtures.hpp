@@ -57,7 +57,8 @@ inline double sampled_point_triangle_distance(const Eigen::Vector3d& p, const Ei
   const Eigen::Vector3d t[3] = {t0, t1, t2};
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector3d &a = t[i], &b = t[(i + 1) % 3];
-    best = std::min(best, sampled_min_1d([&](double s) { return (a + s * (b - a) - p).squaredNorm(); }));
+    best = std::min(best,
+                    sampled_min_1d([&](double s) { return (a + s * (b - a) - p).squaredNorm(); }));
   }
   return best;
 }

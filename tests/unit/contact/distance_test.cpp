@@ -20,11 +20,11 @@
 #include "mlshell/contact/distance/point_triangle.hpp"
 
 using namespace mlshell;
+using Eigen::Vector3d;
 using mlshell::test::expect_derivatives;
 using mlshell::test::random_rotation;
 using mlshell::test::stack;
 using mlshell::test::vertex;
-using Eigen::Vector3d;
 
 namespace {
 
@@ -38,8 +38,8 @@ void expect_point_triangle_derivatives(const Vector12& x, PointTriangleDistanceT
                                        const std::string& where) {
   expect_derivatives<12>(
       [&](const Vector12& y, Vector12* g, Matrix12* H) {
-        return point_triangle_distance(vertex(y, 0), vertex(y, 1), vertex(y, 2), vertex(y, 3),
-                                       type, g, H);
+        return point_triangle_distance(vertex(y, 0), vertex(y, 1), vertex(y, 2), vertex(y, 3), type,
+                                       g, H);
       },
       x, 1.0, where);
 }
@@ -131,7 +131,8 @@ TEST(ContactDistance, LineLineValueAndDerivatives) {
     expect_derivatives<12>(f, x, 1.0, "line–line random " + std::to_string(k));
   }
   // Edges crossing at a point (d = 0, ∇d = 0).
-  expect_derivatives<12>(f, moved(stack(a0, a1, Vector3d(0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)), rng),
+  expect_derivatives<12>(f,
+                         moved(stack(a0, a1, Vector3d(0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)), rng),
                          1.0, "crossing edges");
   // Nearly parallel lines (sin θ = 10⁻²): the Hessian grows like 1/sin²θ, still exact.
   expect_derivatives<12>(
@@ -173,12 +174,16 @@ TEST(ContactDistance, PointTriangleEveryTypeDerivatives) {
     Vector3d p;
     T type;
   };
-  const Case cases[] = {{Vector3d(-0.5, -0.4, 0.3), T::P_T0}, {Vector3d(1.6, -0.2, 0.3), T::P_T1},
-                        {Vector3d(-0.2, 1.5, -0.3), T::P_T2}, {Vector3d(0.5, -0.6, 0.2), T::P_E0},
-                        {Vector3d(0.8, 0.8, 0.1), T::P_E1},   {Vector3d(-0.7, 0.4, -0.2), T::P_E2},
+  const Case cases[] = {{Vector3d(-0.5, -0.4, 0.3), T::P_T0},
+                        {Vector3d(1.6, -0.2, 0.3), T::P_T1},
+                        {Vector3d(-0.2, 1.5, -0.3), T::P_T2},
+                        {Vector3d(0.5, -0.6, 0.2), T::P_E0},
+                        {Vector3d(0.8, 0.8, 0.1), T::P_E1},
+                        {Vector3d(-0.7, 0.4, -0.2), T::P_E2},
                         {Vector3d(0.2, 0.3, 0.5), T::P_T},
                         // degenerate: in the plane, inside the triangle (d = 0) and outside it
-                        {Vector3d(0.2, 0.3, 0.0), T::P_T},    {Vector3d(0.5, -0.6, 0.0), T::P_E0}};
+                        {Vector3d(0.2, 0.3, 0.0), T::P_T},
+                        {Vector3d(0.5, -0.6, 0.0), T::P_E0}};
   std::mt19937 rng(4);
   for (const Case& c : cases) {
     const Vector12 x = moved(stack(c.p, t0, t1, t2), rng);
@@ -199,9 +204,19 @@ TEST(ContactDistance, EdgeEdgeEveryTypeDerivatives) {
   // eb0 ↔ eb1, a ↔ b), which permute the types.
   const Vector12 pp = stack(a0, a1, Vector3d(-0.5, -0.3, 0.2), Vector3d(-1.0, -1.0, 0.5));
   const Vector12 pe = stack(a0, a1, Vector3d(0.5, 0.0, 0.4), Vector3d(0.5, 0.5, 1.4));
-  const auto swap_a = [](Vector12 x) { x.head<6>() = stack2(vertex(x, 1), vertex(x, 0)); return x; };
-  const auto swap_b = [](Vector12 x) { x.tail<6>() = stack2(vertex(x, 3), vertex(x, 2)); return x; };
-  const auto swap_ab = [](Vector12 x) { Vector12 y; y << x.tail<6>(), x.head<6>(); return y; };
+  const auto swap_a = [](Vector12 x) {
+    x.head<6>() = stack2(vertex(x, 1), vertex(x, 0));
+    return x;
+  };
+  const auto swap_b = [](Vector12 x) {
+    x.tail<6>() = stack2(vertex(x, 3), vertex(x, 2));
+    return x;
+  };
+  const auto swap_ab = [](Vector12 x) {
+    Vector12 y;
+    y << x.tail<6>(), x.head<6>();
+    return y;
+  };
   struct Case {
     Vector12 x;
     T type;

@@ -14,9 +14,9 @@
 #include "mlshell/contact/distance/point_triangle.hpp"
 
 using namespace mlshell;
+using Eigen::Vector3d;
 using mlshell::test::sampled_edge_edge_distance;
 using mlshell::test::sampled_point_triangle_distance;
-using Eigen::Vector3d;
 
 namespace {
 
@@ -24,8 +24,8 @@ namespace {
 /// samples come within their own resolution of it.
 void expect_minimum(double classified, double sampled, const std::string& where) {
   EXPECT_LE(classified, sampled + 1e-13) << where;
-  EXPECT_LE(sampled - classified, 1e-9) << where << " classified " << classified << " sampled "
-                                         << sampled;
+  EXPECT_LE(sampled - classified, 1e-9)
+      << where << " classified " << classified << " sampled " << sampled;
 }
 
 void expect_point_triangle(const Vector3d& p, const Vector3d& t0, const Vector3d& t1,
@@ -69,16 +69,17 @@ TEST(ContactDistanceType, EdgeEdgeRandomStatesMatchSampledMinimum) {
 }
 
 TEST(ContactDistanceType, EdgeEdgeParallelAndDegenerateMatchSampledMinimum) {
-  const Vector3d a0(0, 0, 0), a1(1, 0, 0);
   std::mt19937 rng(13);
   for (int k = 0; k < 20; ++k) {
     const Eigen::Matrix3d R = mlshell::test::random_rotation(rng);
     const auto m = [&](double x, double y, double z) { return Vector3d(R * Vector3d(x, y, z)); };
     const std::string at = " (rotation " + std::to_string(k) + ")";
     // Exactly parallel: overlapping, apart, opposite directions, collinear.
-    expect_edge_edge(m(0, 0, 0), m(1, 0, 0), m(0.3, 0.5, 0), m(1.5, 0.5, 0), "parallel overlapping" + at);
+    expect_edge_edge(m(0, 0, 0), m(1, 0, 0), m(0.3, 0.5, 0), m(1.5, 0.5, 0),
+                     "parallel overlapping" + at);
     expect_edge_edge(m(0, 0, 0), m(1, 0, 0), m(1.5, 0.5, 0), m(2.5, 0.5, 0), "parallel apart" + at);
-    expect_edge_edge(m(0, 0, 0), m(1, 0, 0), m(1.5, 0.5, 0.2), m(0.3, 0.5, 0.2), "antiparallel" + at);
+    expect_edge_edge(m(0, 0, 0), m(1, 0, 0), m(1.5, 0.5, 0.2), m(0.3, 0.5, 0.2),
+                     "antiparallel" + at);
     expect_edge_edge(m(0, 0, 0), m(1, 0, 0), m(1.5, 0, 0), m(2.5, 0, 0), "collinear apart" + at);
     // Nearly parallel, on both sides of the threshold sin²θ = 10⁻¹⁰.
     for (double tilt : {1e-7, 1e-5, 1e-3, 1e-1})
@@ -91,8 +92,6 @@ TEST(ContactDistanceType, EdgeEdgeParallelAndDegenerateMatchSampledMinimum) {
     expect_edge_edge(m(0, 0, 0), m(1, 0, 0), m(0.5, 0.2, 0.3), m(0.5, 0.2, 0.3), "point b" + at);
     expect_edge_edge(m(0.4, 0.4, 0.4), m(0.4, 0.4, 0.4), m(0, 0, 0), m(1, 0, 0), "point a" + at);
   }
-  (void)a0;
-  (void)a1;
 }
 
 TEST(ContactDistanceType, PointTriangleDegenerateMatchSampledMinimum) {

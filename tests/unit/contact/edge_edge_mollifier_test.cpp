@@ -11,10 +11,10 @@
 #include "contact_fixtures.hpp"
 
 using namespace mlshell;
+using Eigen::Vector3d;
 using mlshell::test::expect_derivatives;
 using mlshell::test::stack;
 using mlshell::test::vertex;
-using Eigen::Vector3d;
 
 namespace {
 
@@ -52,14 +52,14 @@ TEST(ContactMollifier, DerivativesInBothRegimes) {
   // c = 4 sin²θ against ε_x = 4·10⁻³: active below sin θ ≈ 0.0316.
   for (double theta : {0.001, 0.01, 0.02, 0.03}) {
     const Vector12 x = edges_at(theta);
-    ASSERT_TRUE(edge_edge_mollifier_active(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3),
-                                           eps_x));
+    ASSERT_TRUE(
+        edge_edge_mollifier_active(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3), eps_x));
     const double m = mollifier(x, eps_x, nullptr, nullptr);
     EXPECT_GT(m, 0.0);
     EXPECT_LT(m, 1.0);
-    expect_derivatives<12>([&](const Vector12& y, Vector12* g,
-                               Matrix12* H) { return mollifier(y, eps_x, g, H); },
-                           x, 1.0, "active, θ = " + std::to_string(theta));
+    expect_derivatives<12>(
+        [&](const Vector12& y, Vector12* g, Matrix12* H) { return mollifier(y, eps_x, g, H); }, x,
+        1.0, "active, θ = " + std::to_string(theta));
   }
   for (double theta : {0.04, 0.5, 1.5}) {
     const Vector12 x = edges_at(theta);
@@ -81,6 +81,7 @@ TEST(ContactMollifier, VanishesForParallelEdgesAndIsC1AtThreshold) {
   EXPECT_NEAR(m, 1.0, 1e-14);
   Vector12 gc;
   const Vector12 x = edges_at(theta);
-  edge_edge_cross_squared_norm(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3), &gc, nullptr);
+  edge_edge_cross_squared_norm(vertex(x, 0), vertex(x, 1), vertex(x, 2), vertex(x, 3), &gc,
+                               nullptr);
   EXPECT_LT(g.norm(), 1e-6 * gc.norm() / eps_x);
 }

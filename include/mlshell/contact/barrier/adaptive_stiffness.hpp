@@ -1,4 +1,4 @@
-// Adaptive barrier stiffness κ (IPC, Li et al. 2020 §4.3 and Supplement; the IPC Toolkit's
+// Adaptive barrier stiffness κ (IPC, Li et al. 2020 and its supplement; the IPC Toolkit's
 // initial_barrier_stiffness and update_barrier_stiffness, whose formulas these follow), for the
 // offset barrier b_ξ of barrier.hpp. All distances d below are squared distances.
 //
@@ -47,8 +47,8 @@ double initial_barrier_stiffness(const ContactBarrier& barrier, double bbox_diag
 /// κ after an iteration whose minimum squared distance went from prev_min_distance to
 /// min_distance: doubled (capped at max_stiffness) while both are below (ξ + ε L)² and it
 /// shrinks, else unchanged.
-double update_barrier_stiffness(double prev_min_distance, double min_distance,
-                                double max_stiffness, double stiffness, double bbox_diagonal,
-                                double thickness = 0.0, double epsilon = 1e-9);
+double update_barrier_stiffness(double prev_min_distance, double min_distance, double max_stiffness,
+                                double stiffness, double bbox_diagonal, double thickness = 0.0,
+                                double epsilon = 1e-9);
 
 }  // namespace mlshell

@@ -1,4 +1,4 @@
-// The clamped log barrier of IPC (Li et al. 2020, eq. 6) on squared distances, as the IPC
+// The clamped log barrier of IPC (Li et al. 2020) on squared distances, as the IPC
 // Toolkit writes it (its barrier.hpp): with d a squared distance and d̂ the squared activation
 // distance,
 //   b(d, d̂) = −(d − d̂)² ln(d / d̂)   for 0 < d < d̂,      b = 0   for d ≥ d̂,
@@ -9,7 +9,7 @@
 // limits at 0⁺: the barrier is undefined there and callers (the line search capped by CCD)
 // never evaluate it there; the infinity makes a step that would get there rejected, never NaN.
 //
-// Thickness offset (Codimensional IPC, Li et al. 2021 §4; Codim-IPC's code and the IPC
+// Thickness offset (Codimensional IPC, Li et al. 2021; Codim-IPC's code and the IPC
 // Toolkit's `dmin` write the same): shells' mid-surfaces stay apart by a thickness ξ, and the
 // barrier activates within a gap ĝ beyond it, at distance ξ + ĝ. Without square roots, on the
 // squared distance d:

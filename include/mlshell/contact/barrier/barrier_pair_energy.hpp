@@ -1,11 +1,11 @@
-// The barrier energy of one contact pair (IPC, Li et al. 2020 eq. 7–8), on an N-dof stencil
+// The barrier energy of one contact pair (IPC, Li et al. 2020), on an N-dof stencil
 // (N = 6, 9, 12) whose squared distance d(x) with ∇d, ∇²d comes from contact/distance/:
 //   E = κ b_ξ(d(x)),   ∇E = κ b' ∇d,   ∇²E = κ (b'' ∇d ∇dᵀ + b' ∇²d),
 // and for an edge–edge pair with the mollifier m(x) (edge_edge_mollifier.hpp), E = κ m b_ξ(d):
 //   ∇E  = κ (b ∇m + m b' ∇d),
 //   ∇²E = κ (b ∇²m + b' (∇m ∇dᵀ + ∇d ∇mᵀ) + m (b'' ∇d ∇dᵀ + b' ∇²d)).
 // b_ξ is the offset barrier of barrier.hpp. With `project` the pair Hessian is projected onto
-// the PSD cone (psd_projection.hpp), as projected Newton needs (IPC §4.4).
+// the PSD cone (psd_projection.hpp), as projected Newton needs (IPC).
 #pragma once
 
 #include <Eigen/Core>
@@ -29,7 +29,7 @@ double barrier_pair_energy(double kappa, const ContactBarrier& barrier, double d
 /// (PSD-projected if `project`). Returns +∞, writing neither, for d ≤ ξ².
 double mollified_barrier_pair_energy(double kappa, const ContactBarrier& barrier, double d,
                                      const Vector12& grad_d, const Matrix12& hess_d, double m,
-                                     const Vector12& grad_m, const Matrix12& hess_m,
-                                     Vector12* grad, Matrix12* hess, bool project);
+                                     const Vector12& grad_m, const Matrix12& hess_m, Vector12* grad,
+                                     Matrix12* hess, bool project);
 
 }  // namespace mlshell

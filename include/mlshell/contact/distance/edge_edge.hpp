@@ -1,5 +1,5 @@
 // Squared distance between two edges (segments) a = (ea0, ea1) and b = (eb0, eb1), 12 dofs
-// x = (ea0, ea1, eb0, eb1), by where the closest points lie (IPC, Li et al. 2020 §4):
+// x = (ea0, ea1, eb0, eb1), by where the closest points lie (IPC, Li et al. 2020):
 //   EA0_EB0, EA0_EB1, EA1_EB0, EA1_EB1   two endpoints:                  point–point d
 //   EA_EB0, EA_EB1                       eb0 or eb1 against a's interior: point–line d
 //   EA0_EB, EA1_EB                       ea0 or ea1 against b's interior: point–line d
@@ -23,11 +23,13 @@
 
 namespace mlshell {
 
+// clang-format off
 enum class EdgeEdgeDistanceType {
   EA0_EB0, EA0_EB1, EA1_EB0, EA1_EB1,  // point–point
   EA_EB0, EA_EB1, EA0_EB, EA1_EB,      // point–edge
   EA_EB                                // line–line
 };
+// clang-format on
 
 /// The relative threshold sin²θ = |u × v|² / (|u|²|v|²) at and below which edges count as
 /// parallel for the classification.
@@ -35,7 +37,8 @@ inline constexpr double kEdgeEdgeParallelThreshold = 1e-10;
 
 /// The type of the file comment.
 EdgeEdgeDistanceType edge_edge_distance_type(const Eigen::Vector3d& ea0, const Eigen::Vector3d& ea1,
-                                             const Eigen::Vector3d& eb0, const Eigen::Vector3d& eb1);
+                                             const Eigen::Vector3d& eb0,
+                                             const Eigen::Vector3d& eb1);
 
 /// d for the given type and, where the pointers are not null, its gradient and Hessian in
 /// (ea0, ea1, eb0, eb1) (zero in the rows of the vertices the type does not involve).

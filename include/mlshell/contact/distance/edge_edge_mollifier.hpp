@@ -1,6 +1,7 @@
-// The edge–edge mollifier for nearly parallel edges (IPC, Li et al. 2020 §4.3, eq. 23), 12 dofs
-// x = (ea0, ea1, eb0, eb1). The edge–edge distance is only C⁰ where the edges become parallel
-// (its type jumps between line–line and point–edge), so the edge–edge barrier is multiplied by
+// The edge–edge mollifier for nearly parallel edges (IPC, Li et al. 2020, the mollified edge–edge
+// barrier), 12 dofs x = (ea0, ea1, eb0, eb1). The edge–edge distance is only C⁰ where the edges
+// become parallel (its type jumps between line–line and point–edge), so the edge–edge barrier is
+// multiplied by
 //   c(x) = |(ea1 − ea0) × (eb1 − eb0)|²,
 //   m(c) = (2 − c/ε_x) c/ε_x   for c < ε_x,   m(c) = 1   for c ≥ ε_x,
 // with ε_x = 10⁻³ |ēa1 − ēa0|² |ēb1 − ēb0|² from the rest positions (IPC's constant). m is C¹ at

@@ -1,6 +1,6 @@
 // Squared distance from a point to an edge (a segment), 9 dofs x = (p, e0, e1), by type: the
-// closest point of the segment is e0, e1 or interior to it. With s = (p − e0)·(e1 − e0) / |e1 − e0|²
-// the parameter of p's projection on the line,
+// closest point of the segment is e0, e1 or interior to it. With s = (p − e0)·(e1 − e0) / |e1 −
+// e0|² the parameter of p's projection on the line,
 //   s ≤ 0:  P_E0,  d = |p − e0|²           (point_point.hpp)
 //   s ≥ 1:  P_E1,  d = |p − e1|²
 //   else:   P_E,   d = point–line distance  (point_line.hpp)

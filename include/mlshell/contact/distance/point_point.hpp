@@ -1,4 +1,4 @@
-// Squared distance between two points (IPC, Li et al. 2020 §4; the point–point type of the
+// Squared distance between two points (IPC, Li et al. 2020; the point–point type of the
 // point–triangle and edge–edge distances), 6 dofs x = (p, q):
 //   d = |p − q|²,   ∇d = 2 (p − q, q − p),   ∇²d = 2 [[I, −I], [−I, I]].
 #pragma once

@@ -1,5 +1,5 @@
 // Squared distance from a point to a triangle, 12 dofs x = (p, t0, t1, t2), by where the
-// closest point of the triangle lies (IPC, Li et al. 2020 §4: the distance of a pair is that of
+// closest point of the triangle lies (IPC, Li et al. 2020: the distance of a pair is that of
 // the primitive sub-pair its closest points lie on, so every type is a smooth function):
 //   P_T0, P_T1, P_T2   a vertex:           d = |p − t_i|²                       (point_point.hpp)
 //   P_E0, P_E1, P_E2   the interior of edge t0t1, t1t2, t2t0: point–line d      (point_line.hpp)
