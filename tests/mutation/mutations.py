@@ -413,6 +413,17 @@ MUTATIONS = [
      "  bool ok = place_kept_lscm() && after_valid();", "  bool ok = place_kept_lscm();",
      "a collapse whose LSCM after chart folds keeps it (points snapped across the fold, no "
      "kernel or Tutte chart, fallback_charts 0)", ()),
+    ("contact-plane-hessian-term-dropped", "src/contact/distance/vector_products.cpp",
+     "hN = 2.0 * gf * gf.transpose() + 2.0 * f * hf;", "hN = 2.0 * gf * gf.transpose();",
+     "the point–plane and line–line Hessians lose the f ∇²f term of ∇²(f²) (Gauss–Newton only)",
+     ()),
+    ("contact-mollifier-hessian-term-dropped", "src/contact/distance/edge_edge_mollifier.cpp",
+     "*hess = d2m * gc * gc.transpose() + dm * hc;", "*hess = d2m * gc * gc.transpose();",
+     "the edge–edge mollifier's Hessian loses m'(c) ∇²c", ()),
+    ("contact-edge-edge-parallel-unguarded", "src/contact/distance/edge_edge.cpp",
+     "if (D > kEdgeEdgeParallelThreshold * uu * vv) {", "if (D > 0.0) {",
+     "nearly parallel edges (sin²θ ≤ 1e-10) take the line–line type, whose closest-point "
+     "parameters and f²/g lose their digits: a distance off the segments' true one", ()),
 ]
 
 
