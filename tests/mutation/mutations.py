@@ -393,6 +393,37 @@ MUTATIONS = [
      "  PetscCall(VecScatterEnd(gather_, gathered_, coarse_gradient, INSERT_VALUES, SCATTER_REVERSE));",
      "the shell transfer's restriction keeps one rank's share of a coarse vertex's gradient "
      "(J_Pᵀ g wrong on 2 ranks: mpi.two_ranks)", ()),
+    ("decimation-boundary-not-straight", "mesh/decimation/decimation.cpp",
+     "    return (p - a - t * ac).norm() <= tolerance * std::sqrt(length2);\n",
+     "    return true;\n",
+     "decimation removes boundary vertices off straight sides: corners go, a dome's rim is cut",
+     ()),
+    ("decimation-group-vertex-moves", "mesh/decimation/decimation.cpp",
+     "  if (g0 != 0) return Keep::kV0;\n", "",
+     "an interior group vertex at an edge's first end moves to the quadric's placement or goes",
+     ()),
+    ("decimation-slivers-allowed", "mesh/decimation/decimation.cpp",
+     "      if (min_angle(after[0], after[1], after[2]) < bound) return boost::none;\n", "",
+     "decimation makes triangles with angles below min_angle_degrees", ()),
+    ("embedding-kept-never-moves", "mesh/decimation/intrinsic_embedding.cpp",
+     "    position[record.kept] = record.placement;\n", "",
+     "the intrinsic embedding flattens each collapse's one-ring with kept vertices where the fine "
+     "mesh had them, not where earlier collapses placed them", ()),
+    ("collapse-chart-fold-unchecked", "mesh/decimation/collapse_chart.cpp",
+     "  bool ok = place_kept_lscm() && after_valid();", "  bool ok = place_kept_lscm();",
+     "a collapse whose LSCM after chart folds keeps it (points snapped across the fold, no "
+     "kernel or Tutte chart, fallback_charts 0)", ()),
+    ("contact-plane-hessian-term-dropped", "src/contact/distance/vector_products.cpp",
+     "hN = 2.0 * gf * gf.transpose() + 2.0 * f * hf;", "hN = 2.0 * gf * gf.transpose();",
+     "the point–plane and line–line Hessians lose the f ∇²f term of ∇²(f²) (Gauss–Newton only)",
+     ()),
+    ("contact-mollifier-hessian-term-dropped", "src/contact/distance/edge_edge_mollifier.cpp",
+     "*hess = d2m * gc * gc.transpose() + dm * hc;", "*hess = d2m * gc * gc.transpose();",
+     "the edge–edge mollifier's Hessian loses m'(c) ∇²c", ()),
+    ("contact-edge-edge-parallel-unguarded", "src/contact/distance/edge_edge.cpp",
+     "if (D > kEdgeEdgeParallelThreshold * uu * vv) {", "if (D > 0.0) {",
+     "nearly parallel edges (sin²θ ≤ 1e-10) take the line–line type, whose closest-point "
+     "parameters and f²/g lose their digits: a distance off the segments' true one", ()),
 ]
 
 

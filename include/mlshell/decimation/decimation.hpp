@@ -30,9 +30,12 @@ struct DecimationOptions {
   double boundary_straightness = 1e-6;
 
   /// `levels` levels in all (≥ 2), each coarse level with about 1/ratio of the next finer
-  /// level's vertices (ratio > 1).
+  /// level's vertices (ratio > 1): vertices[k] = round(vertices[k − 1] / ratio). Throws
+  /// std::invalid_argument for levels < 2 or ratio ≤ 1 ("hierarchy: ratio 1 must be > 1").
   static DecimationOptions by_ratio(int fine_vertices, int levels, double ratio);
-  /// Throws std::invalid_argument naming the field and value for nonsense.
+  /// Throws std::invalid_argument naming the field and value for nonsense: no coarse level,
+  /// counts not strictly decreasing, not below fine_vertices or below 4, angles out of range
+  /// ("hierarchy: vertices[1] = 50 must be < vertices[0] = 50 (strictly decreasing)").
   void validate(int fine_vertices) const;
 };
 
@@ -71,7 +74,8 @@ struct DecimationHierarchy {
 
   int num_levels() const { return static_cast<int>(levels.size()); }
   /// A hash of the topology and rest positions of every level and of the records (equal on
-  /// any number of ranks, for tests and the hierarchy view).
+  /// any number of ranks, for tests and the hierarchy view): 16 hex digits of a 64-bit FNV-1a
+  /// hash over the bit patterns of the positions and the indices.
   std::string fingerprint() const;
 };
 
