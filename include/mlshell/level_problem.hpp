@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <array>
 #include <vector>
 
 #include "mlshell/energy_term.hpp"
@@ -52,6 +53,9 @@ class LevelProblem final : public Objective {
   /// A matrix for the Hessian: the element-stencil pattern plus the pairs the terms add
   /// (EnergyTerm::extend_sparsity).
   PetscErrorCode create_matrix(Mat* H) const;
+  /// Point pairs (natural indices) every matrix of this level must hold beyond the element
+  /// stencils, e.g. the pattern of Galerkin coarse Hessians J_Pᵀ H J_P on a decimated level.
+  void extend_pattern(std::vector<std::array<int, 2>> pairs) { pattern_pairs_ = std::move(pairs); }
   PetscErrorCode create_hessian(Mat* H) const override { return create_matrix(H); }
   PetscErrorCode force_scale(Vec u, PetscReal* scale) override {
     return external_force_norm(u, scale);
@@ -91,6 +95,7 @@ class LevelProblem final : public Objective {
   PetscErrorCode reduce_per_term(Vec u, const PerTerm& value, MPI_Op op, std::vector<double>& out);
   const ParallelLayout& layout_;
   std::vector<std::unique_ptr<EnergyTerm>> terms_;
+  std::vector<std::array<int, 2>> pattern_pairs_;
   std::vector<double> u_local_, g_local_, d_local_;
   long objective_evaluations_ = 0, hessian_evaluations_ = 0, inadmissible_evaluations_ = 0;
   PetscReal evaluation_error_ = 0.0;

@@ -181,12 +181,21 @@ PetscErrorCode ShellTransfer::prolong_correction(Vec x0, Vec x, Vec fine_correct
 PetscErrorCode ShellTransfer::update_jacobians(Vec x0) const {
   PetscFunctionBeginUser;
   std::vector<Point3> x;
-  PetscCall(gather(x0, true, x));
+  if (x0) {
+    PetscCall(gather(x0, true, x));
+  } else {  // the rest state (Levels::composite_norm): the blocks once, then kept
+    if (rest_jacobians_.size() == slots_.size() && !slots_.empty()) {
+      jacobians_ = rest_jacobians_;
+      PetscFunctionReturn(0);
+    }
+    x = rest_gathered_;
+  }
   jacobians_.resize(slots_.size());
   for (size_t j = 0; j < slots_.size(); ++j) {
     const auto& s = slots_[j];
     jacobians_[j] = prolongation_->jacobian(fine_natural_[j], x[s[0]], x[s[1]], x[s[2]]);
   }
+  if (!x0) rest_jacobians_ = jacobians_;
   PetscFunctionReturn(0);
 }
 

@@ -4,6 +4,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -110,9 +111,51 @@ TriangleLevels::TriangleLevels(MPI_Comm comm, std::shared_ptr<const DecimationHi
     transfers_[l] = std::make_unique<ShellTransfer>(*layouts_[l], *layouts_[l + 1],
                                                     prolongations_[l], cost, corner_of);
   }
+  find_galerkin_pairs();
 }
 
 TriangleLevels::~TriangleLevels() = default;
+
+void TriangleLevels::find_galerkin_pairs() {
+  // Sorted neighbour lists per point, the point itself included.
+  auto stencil_adjacency = [](const TriangleDiscretization& d) {
+    std::vector<std::vector<int>> adj(d.num_points());
+    for (int f : d.elements()) {
+      const std::vector<int> st = d.stencil(f);
+      for (int a : st) adj[a].insert(adj[a].end(), st.begin(), st.end());
+    }
+    for (auto& a : adj) {
+      std::sort(a.begin(), a.end());
+      a.erase(std::unique(a.begin(), a.end()), a.end());
+    }
+    return adj;
+  };
+  const int n = num_levels();
+  galerkin_pairs_.assign(std::max(n - 1, 0), {});
+  std::vector<std::vector<int>> fine = stencil_adjacency(*discs_[n - 1]);
+  for (int l = n - 2; l >= 0; --l) {
+    const ShellProlongation& p = *prolongations_[l];
+    std::vector<std::vector<int>> coarse(discs_[l]->num_points());
+    for (int i = 0; i < p.num_fine(); ++i)
+      for (int j : fine[i])
+        for (int a : p.columns(i))
+          coarse[a].insert(coarse[a].end(), p.columns(j).begin(), p.columns(j).end());
+    const std::vector<std::vector<int>> own = stencil_adjacency(*discs_[l]);
+    for (int a = 0; a < static_cast<int>(coarse.size()); ++a) {
+      std::vector<int>& c = coarse[a];
+      std::sort(c.begin(), c.end());
+      c.erase(std::unique(c.begin(), c.end()), c.end());
+      for (int b : c)
+        if (a < b && !std::binary_search(own[a].begin(), own[a].end(), b))
+          galerkin_pairs_[l].push_back({a, b});
+      // The level's matrices hold both patterns.
+      std::vector<int> both;
+      std::set_union(c.begin(), c.end(), own[a].begin(), own[a].end(), std::back_inserter(both));
+      c = std::move(both);
+    }
+    fine = std::move(coarse);
+  }
+}
 
 const LevelTransfer& TriangleLevels::transfer(int l) const {
   if (l < 0 || l >= static_cast<int>(transfers_.size()))

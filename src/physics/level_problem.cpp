@@ -50,7 +50,7 @@ PetscErrorCode LevelProblem::accepted(Vec u) {
 }
 
 PetscErrorCode LevelProblem::create_matrix(Mat* H) const {
-  std::vector<std::array<int, 2>> pairs;
+  std::vector<std::array<int, 2>> pairs = pattern_pairs_;
   for (const auto& t : terms_) t->extend_sparsity(pairs);
   return layout_.create_matrix(H, pairs);
 }

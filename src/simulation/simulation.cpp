@@ -246,17 +246,21 @@ std::shared_ptr<const DecimationHierarchy> Simulation::decimate_mesh(const Trian
     options = DecimationOptions::by_ratio(mesh.num_points(), spec.levels, spec.ratio);
   else
     options.vertices = spec.vertices;
+  // Each point selection's vertex is a group of its own while decimating: it is never removed.
   TriangleMesh marked = mesh;
+  std::vector<int> selected;
   {
     const TriangleDiscretization fine(mesh);
-    const std::vector<int> points = selected_points(scene_, fine, frame_);
-    if (!points.empty()) marked.groups[" selected points"] = points;
+    selected = selected_points(scene_, fine, frame_);
+    const std::vector<int>& points = selected;
+    for (int v : points) marked.groups[" point " + std::to_string(v)] = {v};
   }
   try {
     options.validate(mesh.num_points());
     const LogEventScope event("Setup:decimation");
     auto hierarchy = std::make_shared<DecimationHierarchy>(decimate(marked, options));
-    for (DecimationLevel& level : hierarchy->levels) level.mesh.groups.erase(" selected points");
+    for (DecimationLevel& level : hierarchy->levels)
+      for (int v : selected) level.mesh.groups.erase(" point " + std::to_string(v));
     return hierarchy;
   } catch (const std::invalid_argument& e) {
     throw SceneError(where + e.what());
@@ -302,7 +306,9 @@ void Simulation::setup_triangles() {
   {
     const LogEventScope event("Setup:problems");
     multilevel_ = std::make_unique<MultilevelProblem>(*levels, scene_.time.dt, [&](int l) {
-      return build_triangle_problem(scene_, t.discretization(l), t.layout(l), frame_);
+      auto problem = build_triangle_problem(scene_, t.discretization(l), t.layout(l), frame_);
+      if (l < t.finest()) problem->extend_pattern(t.galerkin_pairs(l));
+      return problem;
     });
   }
   const TriangleDiscretization& disc = t.discretization(t.finest());

@@ -10,6 +10,7 @@
 //   prolong_correction(u₀, u) = P(X̄_c + u) − P(X̄_c + u₀),
 //   prolong_direction(u₀, d)  = J_P(X̄_c + u₀) d,   restrict_gradient(u₀, g) = J_P(X̄_c + u₀)ᵀ g,
 //   coarse_operator(u₀, A)    = J_Pᵀ A J_P  (J_P an MPIAIJ matrix, 9 entries per row, MatPtAP).
+// A null u₀ means the rest state u₀ = 0 (Levels::composite_norm's linearisation).
 // The Jacobian blocks are evaluated at every call (a 3×9 block per owned fine vertex: cheap next
 // to an energy evaluation).
 //
@@ -81,6 +82,7 @@ class ShellTransfer final : public LevelTransfer {
   VecScatter survivors_ = nullptr;     ///< fine global → coarse global (Π), if given
   mutable Mat J_ = nullptr;
   mutable std::vector<ShellProlongation::Jacobian> jacobians_;
+  mutable std::vector<ShellProlongation::Jacobian> rest_jacobians_;  ///< at u₀ = 0, on first use
 
   /// X̄_c + u (with_rest) or u at the gathered coarse vertices.
   PetscErrorCode gather(Vec u, bool with_rest, std::vector<Point3>& values) const;

@@ -11,6 +11,7 @@
 // transfers move little data between ranks.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -43,6 +44,11 @@ class TriangleLevels final : public Levels {
   const ShellProlongation& prolongation(int l) const { return *prolongations_[l]; }
   /// The direct P^l from level l to the finest (built on first use; P^L is not defined).
   const ShellProlongation& direct_prolongation(int l) const;
+  /// Point pairs of level l (l < finest) that the Galerkin product J_Pᵀ H J_P couples beyond
+  /// level l's element stencils, H with level l + 1's pattern (its own such pairs included): a
+  /// fine vertex depends on the three corners of its coarse triangle, so two coarse triangles
+  /// couple wherever fine vertices in them do. LevelProblem::extend_pattern takes them.
+  const std::vector<std::array<int, 2>>& galerkin_pairs(int l) const { return galerkin_pairs_[l]; }
 
  private:
   std::shared_ptr<const DecimationHierarchy> hierarchy_;
@@ -52,6 +58,8 @@ class TriangleLevels final : public Levels {
   std::vector<std::shared_ptr<const ShellProlongation>> prolongations_;
   std::vector<std::unique_ptr<LevelTransfer>> transfers_;
   mutable std::vector<std::unique_ptr<ShellProlongation>> direct_;
+  std::vector<std::vector<std::array<int, 2>>> galerkin_pairs_;
+  void find_galerkin_pairs();
 };
 
 /// The rank that owns each point of `layout` (natural order), on every rank.
