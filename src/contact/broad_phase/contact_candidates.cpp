@@ -7,8 +7,7 @@
 
 namespace mlshell {
 
-ContactSurface ContactSurface::from_faces(int num_vertices,
-                                          std::vector<std::array<int, 3>> faces) {
+ContactSurface ContactSurface::from_faces(int num_vertices, std::vector<std::array<int, 3>> faces) {
   ContactSurface s;
   s.num_vertices = num_vertices;
   s.edges.reserve(3 * faces.size());

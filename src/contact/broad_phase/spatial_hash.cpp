@@ -33,7 +33,8 @@ class Grid {
     std::array<double, 3> hi = {-inf, -inf, -inf};
     for (const auto* list : {&boxes.vertices, &boxes.edges, &boxes.faces})
       for (const Box& b : *list)
-        for (int k = 0; k < 3; ++k) lo_[k] = std::min(lo_[k], b.lo[k]), hi[k] = std::max(hi[k], b.hi[k]);
+        for (int k = 0; k < 3; ++k)
+          lo_[k] = std::min(lo_[k], b.lo[k]), hi[k] = std::max(hi[k], b.hi[k]);
     const auto& sized = boxes.edges.empty() ? boxes.faces : boxes.edges;
     double sum = 0.0;
     for (const Box& b : sized)
@@ -45,7 +46,8 @@ class Grid {
     h_ = std::max(h_, extent / double(1 << 20));
     // A few boxes far larger than the rest (a vertex that moves far in a step) would be listed
     // in very many cells: double h until the lists hold at most 64 entries a box on average.
-    const double boxes_count = double(boxes.vertices.size() + boxes.edges.size() + boxes.faces.size());
+    const double boxes_count =
+        double(boxes.vertices.size() + boxes.edges.size() + boxes.faces.size());
     while (listed_cells(boxes) > 64.0 * boxes_count) h_ *= 2.0;
     for (int k = 0; k < 3; ++k) n_[k] = cell_index(hi[k], k) + 1;
   }
@@ -56,7 +58,8 @@ class Grid {
     for (const auto* list : {&boxes.vertices, &boxes.edges, &boxes.faces})
       for (const Box& b : *list) {
         double cells = 1.0;
-        for (int k = 0; k < 3; ++k) cells *= double(cell_index(b.hi[k], k) - cell_index(b.lo[k], k) + 1);
+        for (int k = 0; k < 3; ++k)
+          cells *= double(cell_index(b.hi[k], k) - cell_index(b.lo[k], k) + 1);
         total += cells;
       }
     return total;
@@ -115,7 +118,9 @@ ContactCandidates spatial_hash_candidates(const ContactSurface& surface,
     std::size_t end = begin;
     vs.clear(), es.clear(), fs.clear();
     for (; end < entries.size() && entries[end].cell == cell; ++end)
-      (entries[end].kind == kVertex ? vs : entries[end].kind == kEdge ? es : fs)
+      (entries[end].kind == kVertex ? vs
+       : entries[end].kind == kEdge ? es
+                                    : fs)
           .push_back(entries[end].id);
     for (const int v : vs)
       for (const int f : fs) {

@@ -104,9 +104,8 @@ Eigen::Vector3d at(const auto& x, int i) { return x.template segment<3>(3 * i); 
 
 CcdResult point_point_ccd(const Vector6& x0, const Vector6& dx, double thickness, double t_max,
                           const AdditiveCcdOptions& options) {
-  return additive_ccd<2>(x0, dx, 1, thickness, t_max, options, [](const Vector6& x) {
-    return point_point_distance(at(x, 0), at(x, 1));
-  });
+  return additive_ccd<2>(x0, dx, 1, thickness, t_max, options,
+                         [](const Vector6& x) { return point_point_distance(at(x, 0), at(x, 1)); });
 }
 
 CcdResult point_edge_ccd(const Vector9& x0, const Vector9& dx, double thickness, double t_max,
@@ -116,8 +115,8 @@ CcdResult point_edge_ccd(const Vector9& x0, const Vector9& dx, double thickness,
   });
 }
 
-CcdResult point_triangle_ccd(const Vector12& x0, const Vector12& dx, double thickness,
-                             double t_max, const AdditiveCcdOptions& options) {
+CcdResult point_triangle_ccd(const Vector12& x0, const Vector12& dx, double thickness, double t_max,
+                             const AdditiveCcdOptions& options) {
   return additive_ccd<4>(x0, dx, 1, thickness, t_max, options, [](const Vector12& x) {
     return point_triangle_distance(at(x, 0), at(x, 1), at(x, 2), at(x, 3));
   });

@@ -2,6 +2,8 @@
 // exactly the same sorted candidates; the proximity candidates hold every pair closer than the
 // distance (brute force over all pairs); no candidate shares a vertex; the swept candidates
 // hold every pair that additive CCD reports colliding, but for CCD's own false positives.
+#include "mlshell/contact/broad_phase/broad_phase.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 
 #include "contact/ccd_fixtures.hpp"
 #include "contact/stacked_sheets.hpp"
-#include "mlshell/contact/broad_phase/broad_phase.hpp"
 
 namespace mlshell {
 namespace {
@@ -49,8 +50,8 @@ bool contains(const std::vector<T>& sorted, const T& value) {
 void expect_sorted_unique_and_disjoint(const ContactSurface& surface, const ContactCandidates& c) {
   EXPECT_TRUE(std::adjacent_find(c.point_triangle.begin(), c.point_triangle.end(),
                                  std::greater_equal<>()) == c.point_triangle.end());
-  EXPECT_TRUE(std::adjacent_find(c.edge_edge.begin(), c.edge_edge.end(),
-                                 std::greater_equal<>()) == c.edge_edge.end());
+  EXPECT_TRUE(std::adjacent_find(c.edge_edge.begin(), c.edge_edge.end(), std::greater_equal<>()) ==
+              c.edge_edge.end());
   for (const auto& [v, f] : c.point_triangle) {
     const auto& t = surface.faces[f];
     EXPECT_TRUE(t[0] != v && t[1] != v && t[2] != v) << v << " in face " << f;

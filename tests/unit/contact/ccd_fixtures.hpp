@@ -40,10 +40,14 @@ struct MovingStencil {
   double squared_distance(double t) const {
     const auto v = [&](int i) { return vertex(i, t); };
     switch (kind) {
-      case StencilKind::kPointPoint: return point_point_distance(v(0), v(1));
-      case StencilKind::kPointEdge: return point_edge_distance(v(0), v(1), v(2));
-      case StencilKind::kPointTriangle: return point_triangle_distance(v(0), v(1), v(2), v(3));
-      case StencilKind::kEdgeEdge: return edge_edge_distance(v(0), v(1), v(2), v(3));
+      case StencilKind::kPointPoint:
+        return point_point_distance(v(0), v(1));
+      case StencilKind::kPointEdge:
+        return point_edge_distance(v(0), v(1), v(2));
+      case StencilKind::kPointTriangle:
+        return point_triangle_distance(v(0), v(1), v(2), v(3));
+      case StencilKind::kEdgeEdge:
+        return edge_edge_distance(v(0), v(1), v(2), v(3));
     }
     return 0.0;
   }
@@ -54,8 +58,10 @@ struct MovingStencil {
         return point_point_ccd(x0.head<6>(), dx.head<6>(), thickness, t_max, options);
       case StencilKind::kPointEdge:
         return point_edge_ccd(x0.head<9>(), dx.head<9>(), thickness, t_max, options);
-      case StencilKind::kPointTriangle: return point_triangle_ccd(x0, dx, thickness, t_max, options);
-      case StencilKind::kEdgeEdge: return edge_edge_ccd(x0, dx, thickness, t_max, options);
+      case StencilKind::kPointTriangle:
+        return point_triangle_ccd(x0, dx, thickness, t_max, options);
+      case StencilKind::kEdgeEdge:
+        return edge_edge_ccd(x0, dx, thickness, t_max, options);
     }
     return {};
   }

@@ -145,8 +145,7 @@ TEST(ContactCcd, NearMissesAndNearHitsWithin1e9) {
       const double t1 = expect_conservative(head_on, xi, 1.0, head_on.ccd(xi, 1.0));
       EXPECT_EQ(std::isfinite(t1), delta < 0);
       // Passing the triangle's edge x = 0 on the outside (δ > 0) or just inside it (δ < 0).
-      const auto past_edge =
-          point_over_triangle(V(-xi - delta, 0.5, 1), V(0, 0, -2));
+      const auto past_edge = point_over_triangle(V(-xi - delta, 0.5, 1), V(0, 0, -2));
       const double t2 = expect_conservative(past_edge, xi, 1.0, past_edge.ccd(xi, 1.0));
       EXPECT_EQ(std::isfinite(t2), delta < 0);
       // Crossing edges, b passing a at ξ + δ.

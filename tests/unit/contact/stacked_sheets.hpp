@@ -32,7 +32,8 @@ inline SheetScene stacked_sheets(int layers, int n, double gap, double amplitude
       scene.x.emplace_back(p.x(), p.y(),
                            k * gap + amplitude * std::sin(two_pi * (3.0 * p.x() + k / 3.0)) *
                                          std::sin(two_pi * 2.0 * p.y()));
-    for (const auto& t : sheet.triangles) faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (const auto& t : sheet.triangles)
+      faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   }
   scene.surface = ContactSurface::from_faces(static_cast<int>(scene.x.size()), std::move(faces));
   return scene;

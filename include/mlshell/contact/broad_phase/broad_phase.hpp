@@ -34,9 +34,9 @@ enum class BroadPhaseMethod { kSpatialHash, kBvh };
 /// Pairs whose grown boxes overlap at positions x (#V points): a superset of the pairs closer
 /// than `distance` ≥ 0. Throws std::invalid_argument for a wrong number of positions, a
 /// non-finite position or a negative or non-finite distance.
-ContactCandidates find_proximity_candidates(const ContactSurface& surface,
-                                            std::span<const Eigen::Vector3d> x, double distance,
-                                            BroadPhaseMethod method = BroadPhaseMethod::kSpatialHash);
+ContactCandidates find_proximity_candidates(
+    const ContactSurface& surface, std::span<const Eigen::Vector3d> x, double distance,
+    BroadPhaseMethod method = BroadPhaseMethod::kSpatialHash);
 
 /// Pairs whose boxes swept over the step x0 → x1, grown, overlap: a superset of the pairs that
 /// come closer than `distance` at some time of the linear step.

@@ -75,8 +75,8 @@ CcdResult point_point_ccd(const Vector6& x0, const Vector6& dx, double thickness
 CcdResult point_edge_ccd(const Vector9& x0, const Vector9& dx, double thickness, double t_max,
                          const AdditiveCcdOptions& options = {});
 /// Point–triangle (p, t0, t1, t2).
-CcdResult point_triangle_ccd(const Vector12& x0, const Vector12& dx, double thickness,
-                             double t_max, const AdditiveCcdOptions& options = {});
+CcdResult point_triangle_ccd(const Vector12& x0, const Vector12& dx, double thickness, double t_max,
+                             const AdditiveCcdOptions& options = {});
 /// Edge–edge (ea0, ea1, eb0, eb1).
 CcdResult edge_edge_ccd(const Vector12& x0, const Vector12& dx, double thickness, double t_max,
                         const AdditiveCcdOptions& options = {});
