@@ -424,6 +424,22 @@ MUTATIONS = [
      "if (D > kEdgeEdgeParallelThreshold * uu * vv) {", "if (D > 0.0) {",
      "nearly parallel edges (sin²θ ≤ 1e-10) take the line–line type, whose closest-point "
      "parameters and f²/g lose their digits: a distance off the segments' true one", ()),
+    ("contact-ccd-lp-one-primitive", "src/contact/ccd/additive_ccd.cpp",
+     "const double lp = max_a + max_b;", "const double lp = max_b;",
+     "additive CCD bounds the closing speed by one primitive's motion only: its steps overshoot "
+     "when the point or the first edge moves (false negatives)", ()),
+    ("contact-ccd-cap-reports-safe", "src/contact/ccd/additive_ccd.cpp",
+     "  result.may_collide = true;  // capped", "  result.may_collide = false;  // capped",
+     "additive CCD at its iteration cap reports no collision instead of the time proven safe",
+     ()),
+    ("contact-broad-phase-boxes-not-swept", "src/contact/broad_phase/primitive_boxes.cpp",
+     "lo = std::min({lo, x0[i][k], x1[i][k]});", "lo = std::min({lo, x0[i][k]});",
+     "the swept boxes miss the end positions' lower bounds: CCD candidates lost", ()),
+    ("contact-spatial-hash-pairs-repeated", "src/contact/broad_phase/spatial_hash.cpp",
+     "            grid.key_of_point(intersection_corner(a, b)) == cell)\n          out.edge_edge",
+     "            true)\n          out.edge_edge",
+     "the spatial hash reports an edge pair from every cell the two boxes share (duplicates)",
+     ()),
 ]
 
 
