@@ -128,6 +128,7 @@ struct Level {
   Vec x0 = nullptr, restricted = nullptr;          // l < L: x₀^l and R ∇h^{l+1}
   Vec correction = nullptr, trial = nullptr;       // l > 0: prolongated correction, x + s
   Vec scratch = nullptr;                           // l < L: x − x₀
+  Vec shortened = nullptr;        // l < L: a coarse end point pulled back into the fine radius
   Vec anchor = nullptr;           // l < L, -tao_rmtr_coarse_start iterate: the level's own iterate,
   bool anchored = false;          // once it has one
   long objectives = 0;            // coarse-correction trial points
@@ -171,6 +172,7 @@ void destroy_levels(RmtrContext& c) {
     VecDestroy(&lv.trial);
     VecDestroy(&lv.scratch);
     VecDestroy(&lv.anchor);
+    VecDestroy(&lv.shortened);
   }
   c.levels.clear();
 }
@@ -301,6 +303,36 @@ PetscErrorCode project(RmtrContext& c, int l, Vec fine, Vec coarse) {
   return transfer(c, l).project(fine, coarse, kind);
 }
 
+/// Eq. (4.7) for a nonlinear prolongation (the shell prolongation of triangle levels): a coarse
+/// step within the coarse radius can prolongate to a correction slightly longer than the fine
+/// radius Δ (a linear transfer's composite norm rules that out). The coarse step is shortened
+/// along its direction, x₀ + θ(x* − x₀), until its correction fits, and the coarse reduction is
+/// measured again at the shortened point, h(x₀) − h(x₀ + θ(x* − x₀)). On return *end is that
+/// point (lc.shortened), *norm the correction's norm and *reduction the new reduction (≤ 0:
+/// the correction is not tried).
+PetscErrorCode pull_into_radius(RmtrContext& c, int l, PetscReal delta, Vec* end, PetscReal* norm,
+                                PetscReal* reduction) {
+  Level& lv = c.levels[l];
+  Level& lc = c.levels[l - 1];
+  PetscFunctionBeginUser;
+  if (!lc.shortened) PetscCall(VecDuplicate(lc.x0, &lc.shortened));
+  PetscReal theta = 1.0;
+  for (int k = 0; k < 8 && *norm > delta; ++k) {
+    theta *= 0.999 * delta / *norm;
+    PetscCall(VecWAXPY(lc.shortened, -1.0, lc.x0, lc.tr->solution()));
+    PetscCall(VecAYPX(lc.shortened, theta, lc.x0));
+    PetscCall(transfer(c, l).prolong_correction(lc.x0, lc.shortened, lv.correction));
+    PetscCall(lv.tr->level_norm(lv.correction, norm));
+  }
+  ++lv.stats.coarse_shortened;
+  PetscReal h0, h;
+  PetscCall(lc.model->objective(lc.x0, &h0, nullptr));
+  PetscCall(lc.model->objective(lc.shortened, &h, nullptr));
+  *reduction = *norm <= delta && std::isfinite(h) ? h0 - h : 0.0;
+  *end = lc.shortened;
+  PetscFunctionReturn(0);
+}
+
 /// One V-cycle from level l down (Alg. 4.2). `fine_radius` is Δ^{l+1} (∞ on the finest level),
 /// *delta the level's radius; successful[k] counts accepted steps on level k ≤ l that survive.
 PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, PetscReal* delta,
@@ -368,12 +400,17 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
     }
     // h(x₀) − h(x*) as the coarse steps measured it: at the round-off floor the difference of
     // the two values has either sign, and a sound correction would be discarded on it.
-    const PetscReal coarse_reduction = lc.tr->reduction();
+    PetscReal coarse_reduction = lc.tr->reduction();
+    Vec coarse_end = lc.tr->solution();
     PetscReal rho = -PETSC_INFINITY, step_norm = 0.0;
     if (coarse_reduction > 0.0) {
       // s = P(x^{l−1}) − P(x₀^{l−1}) (eq. 4.10)
-      PetscCall(transfer(c, l).prolong_correction(lc.x0, lc.tr->solution(), lv.correction));
+      PetscCall(transfer(c, l).prolong_correction(lc.x0, coarse_end, lv.correction));
       PetscCall(lv.tr->level_norm(lv.correction, &step_norm));
+      if (step_norm > *delta)
+        PetscCall(pull_into_radius(c, l, *delta, &coarse_end, &step_norm, &coarse_reduction));
+    }
+    if (coarse_reduction > 0.0) {
       c.stats.max_correction_ratio =
           std::max<double>(c.stats.max_correction_ratio, step_norm / *delta);
       PetscReal ft;  // with ∇f if the last correction passed: then accepting costs no evaluation
@@ -388,7 +425,7 @@ PetscErrorCode cycle(Tao tao, RmtrContext& c, int l, PetscReal fine_radius, Pets
     }
     if (coarse_reduction > 0.0) lv.correction_passed = rho > c.params.eta1;
     if (lc.anchor) {  // the coarse level's iterate: where its accepted correction ended
-      PetscCall(VecCopy(rho > c.params.eta1 ? lc.tr->solution() : lc.x0, lc.anchor));
+      PetscCall(VecCopy(rho > c.params.eta1 ? coarse_end : lc.x0, lc.anchor));
       lc.anchored = true;
     }
     if (rho > c.params.eta1) {
@@ -565,6 +602,7 @@ PetscErrorCode collect_statistics(RmtrContext& c) {
     s.objectives = t.objectives + lv.objectives;
     s.coarse_accepted = lv.stats.coarse_accepted;
     s.coarse_rejected = lv.stats.coarse_rejected;
+    s.coarse_shortened = lv.stats.coarse_shortened;
     c.stats.assembly_work_units += weight[l] * s.assemblies;
     c.stats.qp_work_units += weight[l] * s.qp_solves;
   }
@@ -580,7 +618,7 @@ PetscErrorCode solve(Tao tao) {
     lv.tr->set_gradient_target(c->stcg_target * tao->gatol);
     lv.tr->reset_counters();
     lv.objectives = 0;
-    lv.stats.coarse_accepted = lv.stats.coarse_rejected = 0;
+    lv.stats.coarse_accepted = lv.stats.coarse_rejected = lv.stats.coarse_shortened = 0;
     lv.anchored = false;  // a coarse iterate of the previous solve need not fit this one's start
   }
   c->stats = RmtrStatistics{};
@@ -897,6 +935,7 @@ RmtrStatistics& RmtrStatistics::operator+=(const RmtrStatistics& o) {
     a.objectives += b.objectives;
     a.coarse_accepted += b.coarse_accepted;
     a.coarse_rejected += b.coarse_rejected;
+    a.coarse_shortened += b.coarse_shortened;
   }
   cycles += o.cycles;
   fmg_cycles += o.fmg_cycles;

@@ -31,6 +31,8 @@ struct RmtrLevelStatistics {
   long objectives = 0;       ///< trial-point evaluations
   long coarse_accepted = 0;  ///< prolongated coarse corrections accepted on this level
   long coarse_rejected = 0;  ///< ... rejected by the multilevel ratio (4.11)
+  /// ... shortened first, to fit the radius (eq. 4.7; only a nonlinear prolongation needs it)
+  long coarse_shortened = 0;
 };
 
 /// Statistics of the last solve of a Tao of type "rmtr".

@@ -45,6 +45,8 @@ class CollapseChart {
   /// `corners` (finest-mesh indices, in any corner order matching `weights`).
   Eigen::Vector2d before_position(const Triangle& corners, const Eigen::Vector3d& weights) const;
   Eigen::Vector2d removed_position() const { return before_[removed_local_]; }
+  /// The kept vertex's before-chart position (where it was before the collapse moved it).
+  Eigen::Vector2d kept_position() const { return before_[kept_local_]; }
 
   /// The after triangle (an index into record.after) containing chart point p, with p's
   /// barycentric coordinates in it (in that triangle's corner order). A point outside every

@@ -14,9 +14,10 @@
 //   placement (Choice): a vertex of a group is never moved, and removed only into a neighbour
 //     that belongs to exactly the same groups (so a side group loses vertices along its side,
 //     a group never loses all of them, and a one-vertex group keeps its vertex); a boundary
-//     vertex is never moved, and removed only along a boundary edge where it lies on the segment of its
-//     two boundary neighbours (within boundary_straightness × the segment's length), so the
-//     boundary keeps the fine boundary's shape and its corners; an interior edge with both ends
+//     vertex is never moved, and removed only along a boundary edge whose new edge (between its
+//     two boundary neighbours) stays within boundary_deviation × its length of every fine
+//     boundary vertex it replaces, so the boundary keeps the fine boundary's shape: straight
+//     sides stay exact, corners stay, curved rims coarsen into chords; an interior edge with both ends
 //     on the boundary is never collapsed (it would pinch or merge boundary loops), nor a
 //     boundary edge of a loop of 3 vertices. Where a vertex must stay, the placement is its
 //     position; elsewhere it is the quadric's optimum.
@@ -91,6 +92,9 @@ struct State {
   std::vector<int> group_set;     ///< by finest vertex: 0, or an id of the set of its groups
   std::vector<int> loop_of;       ///< by finest vertex: its boundary loop, or -1
   std::vector<int> loop_size;     ///< current vertex count of each boundary loop
+  std::vector<std::vector<int>> loops;  ///< the fine boundary loops, in order
+  std::vector<int> loop_position;       ///< by finest vertex: its index in its loop
+  std::vector<Eigen::Vector3d> fine_points;  ///< boundary vertices never move: their positions
   int num_vertices = 0;           ///< vertices left in the Surface_mesh
   int target = 0;                 ///< this level's vertex count
   double cos_max_normal_change = 0.5;
@@ -104,19 +108,31 @@ struct State {
 /// Which vertex of the edge v0–v1 must stay where it is.
 enum class Keep { kRefused, kV0, kV1, kEither, kFree };
 
-/// Whether boundary vertex v lies on the segment of its two boundary neighbours.
-bool straight(const Mesh& mesh, VertexIndex v, double tolerance) {
+/// Whether boundary vertex v may go: the new boundary edge a–c of its two boundary neighbours
+/// stays within `tolerance` × |ac| of every fine boundary vertex it replaces (v and those removed
+/// before between a and c), each projecting inside the edge.
+bool keeps_boundary_shape(const State& s, const Mesh& mesh, VertexIndex v, double tolerance) {
   for (auto h : CGAL::halfedges_around_target(v, mesh)) {
     if (!mesh.is_border(h)) continue;
-    const Eigen::Vector3d a = vec(mesh.point(mesh.source(h)));
-    const Eigen::Vector3d c = vec(mesh.point(mesh.target(mesh.next(h))));
-    const Eigen::Vector3d p = vec(mesh.point(v));
-    const Eigen::Vector3d ac = c - a;
+    const int a = s.fine_of[mesh.source(h)], c = s.fine_of[mesh.target(mesh.next(h))];
+    const int fv = s.fine_of[v];
+    const std::vector<int>& loop = s.loops[s.loop_of[fv]];
+    const int n = static_cast<int>(loop.size());
+    // The fine vertices strictly between a and c on the side of v.
+    bool forward = false;
+    for (int j = (s.loop_position[a] + 1) % n; loop[j] != c; j = (j + 1) % n)
+      forward = forward || loop[j] == fv;
+    const int step = forward ? 1 : n - 1;
+    const Eigen::Vector3d pa = s.fine_points[a], ac = s.fine_points[c] - pa;
     const double length2 = ac.squaredNorm();
     if (!(length2 > 0.0)) return false;
-    const double t = (p - a).dot(ac) / length2;
-    if (t <= 0.0 || t >= 1.0) return false;
-    return (p - a - t * ac).norm() <= tolerance * std::sqrt(length2);
+    for (int j = (s.loop_position[a] + step) % n; loop[j] != c; j = (j + step) % n) {
+      const Eigen::Vector3d ap = s.fine_points[loop[j]] - pa;
+      const double t = ap.dot(ac) / length2;
+      if (t <= 0.0 || t >= 1.0 || (ap - t * ac).norm() > tolerance * std::sqrt(length2))
+        return false;
+    }
+    return true;
   }
   return false;  // not on the boundary
 }
@@ -132,9 +148,9 @@ Keep choose(const State& s, const Profile& profile) {
   const bool free0 = g0 == 0 || g0 == g1, free1 = g1 == 0 || g1 == g0;
   if (profile.is_v0_v1_a_border() || profile.is_v1_v0_a_border()) {
     if (s.loop_size[s.loop_of[f0]] <= 3) return Keep::kRefused;
-    const double tol = s.options->boundary_straightness;
-    const bool removable0 = free0 && straight(mesh, profile.v0(), tol);
-    const bool removable1 = free1 && straight(mesh, profile.v1(), tol);
+    const double tol = s.options->boundary_deviation;
+    const bool removable0 = free0 && keeps_boundary_shape(s, mesh, profile.v0(), tol);
+    const bool removable1 = free1 && keeps_boundary_shape(s, mesh, profile.v1(), tol);
     if (removable0 && removable1) return Keep::kEither;
     if (removable1) return Keep::kV0;
     if (removable0) return Keep::kV1;
@@ -369,8 +385,9 @@ void DecimationOptions::validate(int fine_vertices) const {
     bad_option("min_angle_degrees", min_angle_degrees, "in [0, 60)");
   if (!(max_normal_change_degrees > 0.0 && max_normal_change_degrees <= 180.0))
     bad_option("max_normal_change_degrees", max_normal_change_degrees, "in (0, 180]");
-  if (!(std::isfinite(boundary_straightness) && boundary_straightness >= 0.0))
-    bad_option("boundary_straightness", boundary_straightness, "a finite number >= 0");
+  if (!(std::isfinite(boundary_deviation) && boundary_deviation >= 0.0 &&
+        boundary_deviation < 0.5))
+    bad_option("boundary_deviation", boundary_deviation, "a number in [0, 0.5)");
 }
 
 std::string DecimationHierarchy::fingerprint() const {
@@ -435,8 +452,14 @@ DecimationHierarchy decimate(const TriangleMesh& fine, const DecimationOptions& 
         s.group_set[v] = ids.emplace(groups_of[v], static_cast<int>(ids.size()) + 1).first->second;
   }
   s.loop_of.assign(fine.points.size(), -1);
+  s.loop_position.assign(fine.points.size(), -1);
+  s.loops = topology.boundary_loops();
+  s.fine_points.assign(fine.points.begin(), fine.points.end());
   for (int l = 0; l < num_loops; ++l) {
-    for (int v : topology.boundary_loops()[l]) s.loop_of[v] = l;
+    for (size_t k = 0; k < s.loops[l].size(); ++k) {
+      s.loop_of[s.loops[l][k]] = l;
+      s.loop_position[s.loops[l][k]] = static_cast<int>(k);
+    }
     s.loop_size.push_back(static_cast<int>(topology.boundary_loops()[l].size()));
   }
   s.num_vertices = fine.num_points();

@@ -2,11 +2,13 @@
 // intrinsic prolongation"; paper 2 §4.2, Fig. 8): every vertex of the finer level is a point of
 // the surface, tracked through the collapses that turn the finer level into the coarser one.
 //
-// A point is either a vertex (weight 1 on itself, while the vertex survives) or barycentric
+// A point is either a vertex (weight 1 on itself, while the vertex is untouched) or barycentric
 // coordinates in a triangle of the current mesh. Collapse by collapse (records in order), the
-// points in the collapse's `before` triangles and the removed vertex itself go through the
-// collapse's joint flattening (collapse_chart.hpp): their before-chart positions are located in
-// the after chart, which gives their coordinates in an `after` triangle. Points are kept in
+// points in the collapse's `before` triangles and both split vertices (paper 2 §4.2: the
+// removed one, and the kept one, which the placement moves) go through the collapse's joint
+// flattening (collapse_chart.hpp): their before-chart positions are located in the after chart,
+// which gives their coordinates in an `after` triangle. A kept vertex whose placement is its
+// own position lands on itself. Points are kept in
 // per-triangle lists keyed by the sorted vertex triple, so a collapse touches only its own
 // points: O(records × ring size + points) in all.
 #include "mlshell/decimation/intrinsic_embedding.hpp"
@@ -96,16 +98,20 @@ std::vector<EmbeddedPoint> intrinsic_embedding(const DecimationHierarchy& hierar
       for (int p = it->second; p >= 0; p = points[p].next) touched.push_back(p);
       head.erase(it);
     }
-    const int removed_point = vertex_point[record.removed];
-    if (removed_point >= 0) {
-      vertex_point[record.removed] = -1;
-      touched.push_back(removed_point);
+    for (int v : {record.removed, record.kept}) {
+      const int vertex_point_of_v = vertex_point[v];
+      if (vertex_point_of_v < 0) continue;
+      // A kept vertex that does not move stays a vertex point (weight 1 on itself).
+      if (v == record.kept && record.placement == record.kept_from) continue;
+      vertex_point[v] = -1;
+      touched.push_back(vertex_point_of_v);
     }
     for (int p : touched) {
       TrackedPoint& point = points[p];
-      const Eigen::Vector2d at = point.vertex >= 0
-                                     ? chart.removed_position()
-                                     : chart.before_position(point.corners, point.weights);
+      const Eigen::Vector2d at =
+          point.vertex == record.removed ? chart.removed_position()
+          : point.vertex == record.kept  ? chart.kept_position()
+                                         : chart.before_position(point.corners, point.weights);
       double snap = 0.0;
       const int t = chart.locate(at, &point.weights, &snap);
       if (snap > 1e-12) ++counts.snapped_points;

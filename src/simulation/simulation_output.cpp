@@ -224,7 +224,8 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                                            {"factorisations", Json(l.factorisations)},
                                            {"objectives", Json(l.objectives)},
                                            {"coarse_accepted", Json(l.coarse_accepted)},
-                                           {"coarse_rejected", Json(l.coarse_rejected)}}));
+                                           {"coarse_rejected", Json(l.coarse_rejected)},
+                                           {"coarse_shortened", Json(l.coarse_shortened)}}));
       solver.emplace_back(
           "rmtr", Json(Json::Object{{"cycles", Json(rmtr_totals_.cycles)},
                                     {"levels", Json(levels)},

@@ -24,10 +24,12 @@ struct DecimationOptions {
   double min_angle_degrees = 10.0;
   /// ...or if a triangle's normal would turn by more than this (degrees).
   double max_normal_change_degrees = 60.0;
-  /// Boundary edges collapse only where the boundary is straight: the removed vertex lies on
-  /// the segment of its two boundary neighbours to within this fraction of the segment's
-  /// length (so the boundary keeps the fine boundary's shape).
-  double boundary_straightness = 1e-6;
+  /// A boundary vertex goes only if the new boundary edge, between its two boundary
+  /// neighbours, stays within this fraction of the edge's length of every fine boundary vertex
+  /// it replaces (each projecting inside the edge). Straight sides stay exact and corners stay
+  /// (a right angle deviates by 0.5); the default lets a curved rim coarsen into chords of up to
+  /// about 20° of a circle (4.4 %), so a dome's rim decimates with its surface.
+  double boundary_deviation = 0.05;
 
   /// `levels` levels in all (≥ 2), each coarse level with about 1/ratio of the next finer
   /// level's vertices (ratio > 1): vertices[k] = round(vertices[k − 1] / ratio). Throws

@@ -2,8 +2,10 @@
 // vertex of a finer level is tracked through the collapse records, each collapse flattened
 // jointly (its one-ring before and after, v_removed → (0,0), v_kept → (1,0)), to barycentric
 // coordinates in one triangle of a coarser level. U therefore has at most three nonzeros per
-// row. A vertex that survives to the coarser level has weight 1 on itself (its rest place may
-// have moved: the shell prolongation's offsets carry that difference).
+// row. Both vertices of a collapse are anchored in the after chart (paper 2 §4.2), so a vertex
+// that the collapse's placement moved is embedded where it was; a vertex that never moves has
+// weight 1 on itself. On a flat mesh every point therefore lies exactly at its barycentric
+// place, and P = U.
 #pragma once
 
 #include <Eigen/Core>

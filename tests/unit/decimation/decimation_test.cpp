@@ -264,7 +264,7 @@ TEST(Decimation, PlateLevelsKeepTheBoundaryShapeAndCorners) {
   expect_valid_levels(h, fine, o);
   expect_no_folds_or_slivers(h, fine, o, [](const Point3&) { return Point3(0, 0, 1); });
   // Straight sides do get coarser: the rule keeps the shape without pinning the boundary.
-  EXPECT_GT(expect_boundary_kept(h, fine, o.boundary_straightness), 30);
+  EXPECT_GT(expect_boundary_kept(h, fine, o.boundary_deviation), 30);
   for (const DecimationLevel& level : h.levels)
     for (const Point3& p : level.mesh.points) EXPECT_EQ(p.z(), 0.0);
 }
@@ -275,26 +275,37 @@ TEST(Decimation, PlateWithAHoleKeepsBothLoopsAndTheirCorners) {
   const DecimationHierarchy h = decimate_by_ratio(fine, 3, 3.0, &o);
   expect_valid_levels(h, fine, o);
   EXPECT_EQ(TriangleTopology(h.levels.front().mesh).boundary_loops().size(), 2u);
-  EXPECT_GT(expect_boundary_kept(h, fine, o.boundary_straightness), 20);
+  EXPECT_GT(expect_boundary_kept(h, fine, o.boundary_deviation), 20);
   expect_no_folds_or_slivers(h, fine, o, [](const Point3&) { return Point3(0, 0, 1); });
   expect_replay(h, fine);
 }
 
-TEST(Decimation, DomeKeepsItsCurvedRimAndFacesOutwards) {
+TEST(Decimation, DomeRimCoarsensIntoChordsWithinTheDeviationAndFacesOutwards) {
   TriangleMesh fine = make_spherical_cap(1.0, 1.0, 24);
-  fine.groups.clear();  // the rim stays because it is curved, not because it is a group
+  fine.groups.clear();
+  const int rim = static_cast<int>(TriangleTopology(fine).boundary_loops()[0].size());
+  // Every rim vertex lies off the chord of its neighbours: with a deviation of 1e-6 the rim
+  // stays whole; with the default (5 % of a chord) a level with fewer vertices than the rim
+  // has is in reach, every fine rim vertex within 5 % of the chord that replaced it.
   DecimationOptions o;
-  const DecimationHierarchy h = decimate_by_ratio(fine, 3, 3.0, &o);
+  o.vertices = {fine.num_points() / 3};
+  o.boundary_deviation = 1e-6;
+  const DecimationHierarchy strict = decimate(fine, o);
+  expect_valid_levels(strict, fine, o);
+  EXPECT_EQ(expect_boundary_kept(strict, fine, o.boundary_deviation), 0);
+  o = DecimationOptions{};
+  o.vertices = {fine.num_points() / 3, rim / 2};
+  const DecimationHierarchy h = decimate(fine, o);
   expect_valid_levels(h, fine, o);
-  EXPECT_EQ(expect_boundary_kept(h, fine, o.boundary_straightness), 0);
+  EXPECT_GE(expect_boundary_kept(h, fine, o.boundary_deviation), rim / 2);
   expect_no_folds_or_slivers(h, fine, o, [](const Point3& c) { return c.normalized(); });
 }
 
 TEST(Decimation, BoundaryVerticesOffTheSegmentStayWithinTheStraightnessTolerance) {
   // A square plate whose every second side vertex sticks out by 1e-5 of a cell (in the plane):
-  // no side vertex lies on the segment of its neighbours within 1e-6 of its length, so none may
-  // go however cheap its collapse, and 36 vertices (fewer than the 120 on the sides) are out of
-  // reach; with boundary_straightness 1e-3 the sides coarsen again.
+  // with boundary_deviation 1e-6 no side vertex lies on the segment of its neighbours within
+  // 1e-6 of its length, so none may go however cheap its collapse, and 36 vertices (fewer than
+  // the 120 on the sides) are out of reach; with 1e-3 the sides coarsen again.
   const int n = 30;
   TriangleMesh fine = make_triangle_rectangle(1.0, 1.0, n, n);
   fine.groups.clear();
@@ -308,17 +319,18 @@ TEST(Decimation, BoundaryVerticesOffTheSegmentStayWithinTheStraightnessTolerance
       if (side_y) p.y() += j == 0 ? -bump : bump;
     }
   DecimationOptions o = DecimationOptions::by_ratio(fine.num_points(), 4, 3.0);
+  o.boundary_deviation = 1e-6;
   ASSERT_EQ(o.vertices.back(), 36);
   EXPECT_THROW(decimate(fine, o), MeshError);
   const std::vector<int> targets = o.vertices;
   o.vertices = {320, 160};
   const DecimationHierarchy strict = decimate(fine, o);
-  EXPECT_EQ(expect_boundary_kept(strict, fine, o.boundary_straightness), 0);
-  o.boundary_straightness = 1e-3;
+  EXPECT_EQ(expect_boundary_kept(strict, fine, o.boundary_deviation), 0);
+  o.boundary_deviation = 1e-3;
   o.vertices = targets;
   const DecimationHierarchy loose = decimate(fine, o);
   expect_valid_levels(loose, fine, o);
-  EXPECT_GT(expect_boundary_kept(loose, fine, o.boundary_straightness), 60);
+  EXPECT_GT(expect_boundary_kept(loose, fine, o.boundary_deviation), 60);
 }
 
 TEST(Decimation, NormalChangeBoundRefusesCollapsesOnCurvedSurfacesOnly) {
@@ -452,10 +464,10 @@ TEST(Decimation, NonsenseOptionsAreRefusedByName) {
   EXPECT_NE(message([&] { o.validate(100); }).find("max_normal_change_degrees 0"),
             std::string::npos);
   o.max_normal_change_degrees = 60;
-  o.boundary_straightness = -1;
-  EXPECT_NE(message([&] { o.validate(100); }).find("boundary_straightness -1"), std::string::npos);
+  o.boundary_deviation = -1;
+  EXPECT_NE(message([&] { o.validate(100); }).find("boundary_deviation -1"), std::string::npos);
   // decimate() checks its options before anything else.
-  o.boundary_straightness = 1e-6;
+  o.boundary_deviation = 1e-6;
   o.vertices = {2000};
   EXPECT_THROW(decimate(make_sphere(1.0, 1), o), std::invalid_argument);
 }
@@ -464,6 +476,7 @@ TEST(Decimation, UnreachableTargetsNameTheLevelAndTheCounts) {
   const auto message = [](const TriangleMesh& fine, std::vector<int> vertices) {
     DecimationOptions o;
     o.vertices = std::move(vertices);
+    o.boundary_deviation = 1e-6;
     try {
       decimate(fine, o);
     } catch (const MeshError& e) {
@@ -477,8 +490,8 @@ TEST(Decimation, UnreachableTargetsNameTheLevelAndTheCounts) {
   EXPECT_NE(message(pinned, {20}).find("level 0 of 2 (0 coarsest): reached 25 vertices, target 20"),
             std::string::npos)
       << message(pinned, {20});
-  // A dome's rim is curved, so it keeps all its vertices: fewer vertices than the rim has is
-  // out of reach (on the coarsest level, after a reachable one).
+  // A dome's rim is curved, so with a deviation of 1e-6 it keeps all its vertices: fewer
+  // vertices than the rim has is out of reach (on the coarsest level, after a reachable one).
   TriangleMesh dome = make_spherical_cap(1.0, 1.0, 8);
   dome.groups.clear();
   const int rim = static_cast<int>(TriangleTopology(dome).boundary_loops()[0].size());
