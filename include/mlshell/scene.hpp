@@ -83,6 +83,9 @@ struct HierarchySpec {
   int levels = 4;              ///< in all, the fine mesh included: 2..12
   double ratio = 4.0;          ///< > 1
   std::vector<int> vertices;   ///< if given: strictly decreasing, ≥ 4 each
+  /// How far a coarse boundary edge may stray from the fine boundary vertices it replaces, as a
+  /// fraction of its length (DecimationOptions::boundary_deviation), in [0, 0.5).
+  double boundary_deviation = 0.05;
 };
 
 struct GeometrySpec {

@@ -175,8 +175,15 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
 }
 
 HierarchySpec read_hierarchy(const Field& hierarchy) {
-  hierarchy.expect_keys({"levels", "ratio", "vertices"});
+  hierarchy.expect_keys({"levels", "ratio", "vertices", "boundary_deviation"});
   HierarchySpec spec;
+  if (const auto deviation = hierarchy.find("boundary_deviation")) {
+    spec.boundary_deviation = deviation->number();
+    deviation->check(spec.boundary_deviation >= 0.0 && spec.boundary_deviation < 0.5,
+                     "a coarse boundary edge may stray at most this fraction of its length from "
+                     "the fine boundary",
+                     "a number in [0, 0.5): 0 keeps every boundary vertex off a straight line");
+  }
   if (const auto vertices = hierarchy.find("vertices")) {
     for (const char* key : {"levels", "ratio"})
       if (const auto other = hierarchy.find(key))

@@ -31,10 +31,13 @@ geometry:                    required
     {generator: dome, radius: r, opening_angle: a, rings: n}   apex on +z, rim at a in (0, pi)
     {generator: sphere, radius: r, subdivisions: s}   closed icosphere, s in 0..8
   hierarchy:                 triangle meshes: coarser levels by edge collapse (paper 2 sec. 4.1)
-                             for -tao_type rmtr; one of
+                             for -tao_type rmtr (built and checked whatever the solver); one of
     {levels: n, ratio: r}    n levels in all (2..12, default 4), each with about 1/r of the next
                              finer level's vertices (r in (1, 64], default 4)
     {vertices: [n1, n2, ...]}  the coarse levels' vertex counts, finest-but-one first, decreasing
+    boundary_deviation: d    a coarse boundary edge stays within d times its length of the fine
+                             boundary it replaces (default 0.05: corners and straight sides stay,
+                             curved rims coarsen into chords)
 material:                    required
   model: clyde-orthotropic   woven cloth, eq. (3.3)-(3.4) of Kopanicakova et al. 2019
     preset: denim            Table 1 of the paper with its coupling limited so that the energy is

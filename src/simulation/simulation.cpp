@@ -246,6 +246,7 @@ std::shared_ptr<const DecimationHierarchy> Simulation::decimate_mesh(const Trian
     options = DecimationOptions::by_ratio(mesh.num_points(), spec.levels, spec.ratio);
   else
     options.vertices = spec.vertices;
+  options.boundary_deviation = spec.boundary_deviation;
   // Each point selection's vertex is a group of its own while decimating: it is never removed.
   TriangleMesh marked = mesh;
   std::vector<int> selected;
@@ -263,7 +264,15 @@ std::shared_ptr<const DecimationHierarchy> Simulation::decimate_mesh(const Trian
       for (int v : selected) level.mesh.groups.erase(" point " + std::to_string(v));
     return hierarchy;
   } catch (const std::invalid_argument& e) {
-    throw SceneError(where + e.what());
+    std::string what = e.what();
+    if (spec.vertices.empty()) {
+      char ratio[32];
+      std::snprintf(ratio, sizeof ratio, "%g", spec.ratio);
+      what = "levels " + std::to_string(spec.levels) + " with ratio " + ratio + " from " +
+             std::to_string(mesh.num_points()) + " vertices: " + what +
+             " (ask for fewer levels or a smaller ratio)";
+    }
+    throw SceneError(where + what);
   } catch (const MeshError& e) {
     throw SceneError(where + e.what());
   }
@@ -283,7 +292,9 @@ void Simulation::setup_triangles() {
   const bool multilevel = hierarchy && options_.solver->type == "rmtr";
   const bool inspect = options_.hierarchy_view || !options_.hierarchy_write.empty();
   std::shared_ptr<const DecimationHierarchy> decimation;
-  if (hierarchy && (multilevel || inspect)) decimation = decimate_mesh(mesh);
+  // Built whenever the scene declares it: a hierarchy the mesh cannot have is bad input, whatever
+  // the solver.
+  if (hierarchy) decimation = decimate_mesh(mesh);
   if (decimation && inspect) {
     const TriangleLevels all(comm_, decimation);
     if (options_.hierarchy_view) PetscCallAbort(comm_, view_hierarchy(all, comm_));

@@ -42,8 +42,8 @@ MUTATIONS = [
      "an accepted step adds f(x) − f(x+s) to the reduction since the start, also where "
      "trial_reduction took the trapezoidal rule", ()),
     ("rmtr-coarse-reduction-difference", "solvers/tao_rmtr.cpp",
-     "const PetscReal coarse_reduction = lc.tr->reduction();",
-     "const PetscReal coarse_reduction = f0 - lc.tr->value();",
+     "PetscReal coarse_reduction = lc.tr->reduction();",
+     "PetscReal coarse_reduction = f0 - lc.tr->value();",
      "RMTR's coarse reduction is the difference of two coarse values (round-off of either sign "
      "below the noise of h)", ()),
     ("galerkin-half-dropped", "solvers/coarse_level_model.cpp",
@@ -394,9 +394,10 @@ MUTATIONS = [
      "the shell transfer's restriction keeps one rank's share of a coarse vertex's gradient "
      "(J_Pᵀ g wrong on 2 ranks: mpi.two_ranks)", ()),
     ("decimation-boundary-not-straight", "mesh/decimation/decimation.cpp",
-     "    return (p - a - t * ac).norm() <= tolerance * std::sqrt(length2);\n",
-     "    return true;\n",
-     "decimation removes boundary vertices off straight sides: corners go, a dome's rim is cut",
+     "      if (t <= 0.0 || t >= 1.0 || (ap - t * ac).norm() > tolerance * std::sqrt(length2))",
+     "      if (false)",
+     "decimation removes boundary vertices however far the new edge is from the fine boundary: "
+     "corners go, a dome's rim is cut",
      ()),
     ("decimation-group-vertex-moves", "mesh/decimation/decimation.cpp",
      "  if (g0 != 0) return Keep::kV0;\n", "",
@@ -409,6 +410,31 @@ MUTATIONS = [
      "    position[record.kept] = record.placement;\n", "",
      "the intrinsic embedding flattens each collapse's one-ring with kept vertices where the fine "
      "mesh had them, not where earlier collapses placed them", ()),
+    ("embedding-moved-kept-vertex-not-anchored", "mesh/decimation/intrinsic_embedding.cpp",
+     "      if (v == record.kept && record.placement == record.kept_from) continue;",
+     "      if (v == record.kept) continue;",
+     "a vertex moved by its collapse's placement rides on itself (weight 1) instead of being "
+     "anchored where it was: P is not U on flat meshes", ()),
+    ("decimation-boundary-deviation-tenfold", "mesh/decimation/decimation.cpp",
+     "      if (t <= 0.0 || t >= 1.0 || (ap - t * ac).norm() > tolerance * std::sqrt(length2))",
+     "      if (t <= 0.0 || t >= 1.0 || (ap - t * ac).norm() > 10 * tolerance * std::sqrt(length2))",
+     "curved boundaries coarsen ten times farther from the fine boundary than boundary_deviation "
+     "allows", ()),
+    ("triangle-galerkin-pairs-dropped", "mesh/triangle/triangle_levels.cpp",
+     "          galerkin_pairs_[l].push_back({a, b});", "          continue;",
+     "coarse triangle levels lack the pattern of J_Pᵀ H J_P: Galerkin coarse models fail to "
+     "assemble", ()),
+    ("triangle-owners-tie-to-higher-rank", "mesh/triangle/triangle_levels.cpp",
+     "    owner[t] = static_cast<int>(std::max_element(first, first + num_ranks) - first);",
+     "    owner[t] = num_ranks - 1 - static_cast<int>(std::max_element(std::make_reverse_iterator("
+     "first + num_ranks), std::make_reverse_iterator(first)) - std::make_reverse_iterator(first + "
+     "num_ranks));",
+     "a coarse triangle whose vertices' owners tie goes to the higher rank", ()),
+    ("rmtr-coarse-step-not-pulled-into-radius", "solvers/tao_rmtr.cpp",
+     "      if (step_norm > *delta)\n        PetscCall(pull_into_radius(",
+     "      if (false)\n        PetscCall(pull_into_radius(",
+     "a shell prolongation that stretches a coarse step beyond the fine radius is tried as it is "
+     "(eq. 4.7 broken on triangle levels)", ()),
     ("collapse-chart-fold-unchecked", "mesh/decimation/collapse_chart.cpp",
      "  bool ok = place_kept_lscm() && after_valid();", "  bool ok = place_kept_lscm();",
      "a collapse whose LSCM after chart folds keeps it (points snapped across the fold, no "
