@@ -2,7 +2,8 @@
 # The triangle-shell examples (examples/triangle, paper 2 §5.2) end to end, at their own
 # resolution but with fewer load steps: each converges on 2 ranks, writes an XDMF series of
 # triangles with the per-face fields (membrane_strain, bending_energy) and OBJ frames of
-# triangles, and reports its probes. Then a quasistatic checkpoint restart: the balloon
+# triangles, and reports its probes; and RMTR on its decimation hierarchy converges on 2 ranks
+# (one load step) on all three levels. Then a quasistatic checkpoint restart: the balloon
 # restarted from its step-2 checkpoint ends where the uninterrupted run ends.
 #
 # usage: bash triangle_examples.sh MLSHELL SOURCE_DIR WORK_DIR
@@ -11,7 +12,7 @@ set -euo pipefail
 source "$(dirname "$0")/lib/common.bash" "$@"
 EX="$SRC/examples/triangle"
 
-for scene in plate_buckling plate_shearing shell_indent unstructured_drape balloon; do
+for scene in plate_buckling plate_shearing shell_indent unstructured_drape balloon embossed_panel; do
   echo "check: $scene converges on 2 ranks (2 load steps) and writes triangles with face fields"
   sed "s|../../petsc-options|$SRC/petsc-options|" "$EX/$scene.yaml" >"$scene.yaml"
   rc=0
@@ -34,9 +35,21 @@ obj = sorted(out.glob("frame_*.obj"))[-1].read_text()
 faces = [l for l in obj.splitlines() if l.startswith("f ")]
 assert faces and all(len(f.split()) == 4 for f in faces), "OBJ faces are not triangles"
 PY
+  echo "check: $scene: RMTR on its 3-level hierarchy converges on 2 ranks (1 load step)"
+  rc=0
+  timeout 300 mpiexec --oversubscribe -n 2 "$MLSHELL" "$scene.yaml" -mlshell_quiet -tao_type rmtr \
+    -mlshell_steps 1 -mlshell_output_dir "out/$scene-rmtr" >"$scene-rmtr.log" 2>&1 || rc=$?
+  [[ $rc -eq 0 ]] || die "$scene with rmtr: exit $rc: $(tail -5 "$scene-rmtr.log")"
+  $PY - "out/$scene-rmtr" <<'PY' || die "$scene with rmtr: summary"
+import json, sys
+s = json.load(open(sys.argv[1] + "/summary.json"))
+assert s["status"] == "complete" and s["solver"]["converged"], s["solver"]
+rmtr = s["solver"]["rmtr"]
+assert len(rmtr["levels"]) == 3, rmtr["levels"]
+PY
 done
 
-echo "check: other solvers run triangle shells too: tr, bnls, rmtr (one level) and SNES"
+echo "check: other solvers run triangle shells too: tr, bnls, rmtr and SNES"
 sed "s|../../petsc-options|$SRC/petsc-options|" "$EX/balloon.yaml" >solvers.yaml
 for solver in "-tao_type tr" "-tao_type bnls" "-tao_type rmtr" "-mlshell_step_solver snes"; do
   rm -rf out/solvers
