@@ -25,19 +25,14 @@ geometry:                    required
     {generator: rectangle, size: [w, h], faces: [nx, ny], origin: [x, y], diagonals: d}
         structured, defaults size [1, 1], faces [8, 8], d alternating (or uniform); or
         edge_length: l      an unstructured Delaunay mesh with edges of about l (<= w/2, h/2)
-        relief: {amplitude: a, bumps: [bx, by]}   an embossed rest shape: z = a sin^2(pi bx u)
-                             sin^2(pi by v) over the rectangle's u, v in [0, 1] (bumps default [1, 1])
+        relief: {amplitude: a, bumps: [bx, by]}   embossed: z = a sin^2(pi bx u) sin^2(pi by v)
     {generator: cylinder, radius: r, length: l, faces: [around >= 3, along]}   open, axis z
     {generator: dome, radius: r, opening_angle: a, rings: n}   apex on +z, rim at a in (0, pi)
     {generator: sphere, radius: r, subdivisions: s}   closed icosphere, s in 0..8
-  hierarchy:                 triangle meshes: coarser levels by edge collapse (paper 2 sec. 4.1)
-                             for -tao_type rmtr (built and checked whatever the solver); one of
-    {levels: n, ratio: r}    n levels in all (2..12, default 4), each with about 1/r of the next
-                             finer level's vertices (r in (1, 64], default 4)
-    {vertices: [n1, n2, ...]}  the coarse levels' vertex counts, finest-but-one first, decreasing
-    boundary_deviation: d    a coarse boundary edge stays within d times its length of the fine
-                             boundary it replaces (default 0.05: corners and straight sides stay,
-                             curved rims coarsen into chords)
+  hierarchy:                 triangle meshes, for -tao_type rmtr: coarser levels by edge collapse
+    {levels: n, ratio: r}    n levels in all (2..12, default 4), each with 1/r (in (1, 64], default
+                             4) of the next finer level's vertices; or {vertices: [n1, n2, ...]}
+    boundary_deviation: d    how far a coarse boundary edge may stray, per length (default 0.05)
 material:                    required
   model: clyde-orthotropic   woven cloth, eq. (3.3)-(3.4) of Kopanicakova et al. 2019
     preset: denim            Table 1 of the paper with its coupling limited so that the energy is

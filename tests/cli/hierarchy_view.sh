@@ -38,7 +38,6 @@ for pair in 0:49 1:121 2:361; do
   [[ $n -eq ${pair##*:} ]] || die "level ${pair%%:*} cage has $n vertices, expected ${pair##*:}"
 done
 sed -e 's|out/shell_indent|out|' -e "s|options_file: \.\./\.\./|options_file: $SRC/|" \
-  -e 's|^geometry:|geometry:\n  hierarchy: {levels: 3, ratio: 3}|' \
   "$SRC/examples/triangle/shell_indent.yaml" >dome.yaml
 echo "check: the triangle hierarchy view lists 3 levels with rest-shape errors at round-off"
 timeout 120 mpiexec --oversubscribe -n 2 "$MLSHELL" dome.yaml -mlshell_evaluate \
