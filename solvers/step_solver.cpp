@@ -111,6 +111,7 @@ PetscErrorCode default_options(
 PetscErrorCode read_step_solver_options(MPI_Comm comm, StepSolverOptions* o, char* kind,
                                         size_t kind_size) {
   PetscBool psd_given = PETSC_FALSE, psd = PETSC_FALSE;
+  char coarse_energy[16] = "own";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "mlshell: step solver", "");
   PetscCall(PetscOptionsString("-mlshell_step_solver",
@@ -125,7 +126,16 @@ PetscErrorCode read_step_solver_options(MPI_Comm comm, StepSolverOptions* o, cha
                              "gradient tolerance relative to the external forces: "
                              "|g| < max(-tao_gatol, this * |f_ext|)",
                              "", o->force_rtol, &o->force_rtol, nullptr));
+  PetscCall(PetscOptionsString("-mlshell_coarse_energy",
+                               "own|proxy: what RMTR's first-order coarse models minimise on "
+                               "triangle hierarchies: each coarse mesh's own energy, or the "
+                               "finest energy at the direct prolongation (paper 2 eq. 2)",
+                               "", coarse_energy, coarse_energy, sizeof coarse_energy, nullptr));
   PetscOptionsEnd();
+  if (std::string(coarse_energy) != "own" && std::string(coarse_energy) != "proxy")
+    throw std::invalid_argument("-mlshell_coarse_energy: must be own or proxy; got '" +
+                                std::string(coarse_energy) + "'");
+  o->proxy_coarse_energy = std::string(coarse_energy) == "proxy";
   o->snes = std::string(kind) == "snes";
   if (o->snes) {
     o->type = "snes";

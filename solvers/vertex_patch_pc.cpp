@@ -410,6 +410,14 @@ PetscErrorCode attach_vertex_patches(Mat A, std::shared_ptr<const VertexPatches>
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode share_vertex_patches(Mat from, Mat to) {
+  PetscObject container = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectQuery((PetscObject)from, kPatchesKey, &container));
+  if (container) PetscCall(PetscObjectCompose((PetscObject)to, kPatchesKey, container));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode vertex_patches_of(Mat A, const VertexPatches** patches) {
   PetscFunctionBeginUser;
   *patches = nullptr;

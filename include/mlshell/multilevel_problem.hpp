@@ -32,13 +32,19 @@ class MultilevelProblem final : public MultilevelObjective {
   int num_levels() const override { return static_cast<int>(problems_.size()); }
   LevelProblem& level(int l) { return *problems_[l]; }
   const Levels& hierarchy() const { return levels_; }
+  /// Replaces what RMTR minimises on level l < finest (its first-order coarse models' f^l) by
+  /// `objective`, e.g. a ProxyEnergy; the level's problem still follows the steps
+  /// (synchronize). create_hessian(l) then takes the objective's pattern.
+  void set_level_objective(int l, std::unique_ptr<Objective> objective);
   // MultilevelObjective
-  Objective& level_objective(int l) override { return *problems_[l]; }
+  Objective& level_objective(int l) override {
+    return replaced_[l] ? *replaced_[l] : *problems_[l];
+  }
   PetscErrorCode create_vector(int l, Vec* v) const override {
     return levels_.layout(l).create_vector(v);
   }
   PetscErrorCode create_hessian(int l, Mat* H) const override {
-    return problems_[l]->create_matrix(H);
+    return replaced_[l] ? replaced_[l]->create_hessian(H) : problems_[l]->create_matrix(H);
   }
   const LevelTransfer& transfer(int l) const override { return levels_.transfer(l); }
   PetscErrorCode composite_norm(int l, Vec x, PetscReal* norm) const override {
@@ -58,6 +64,7 @@ class MultilevelProblem final : public MultilevelObjective {
   const Levels& levels_;
   double dt_;
   std::vector<std::unique_ptr<LevelProblem>> problems_;
+  std::vector<std::unique_ptr<Objective>> replaced_;  // by level, null where not replaced
   std::vector<Vec> u_, v_;
 };
 

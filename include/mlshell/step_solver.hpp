@@ -76,6 +76,10 @@ struct StepSolverOptions {
   std::string type = "rmtr";
   bool hessian_psd = false;
   PetscReal force_rtol = 1e-8;
+  /// -mlshell_coarse_energy own|proxy: what RMTR's first-order coarse models minimise on the
+  /// coarse levels of a triangle hierarchy: each coarse mesh's own energy, or paper 2's proxy
+  /// Ψ(P^l(x_l)) of the finest energy (proxy_energy.hpp).
+  bool proxy_coarse_energy = false;
   /// Reads the group (invalid values: std::invalid_argument naming the option and value).
   static StepSolverOptions from_options(MPI_Comm comm);
 };

@@ -31,5 +31,8 @@ struct VertexPatches {
 PetscErrorCode attach_vertex_patches(Mat A, std::shared_ptr<const VertexPatches> patches);
 /// The patches attached to `A`, or null if none were.
 PetscErrorCode vertex_patches_of(Mat A, const VertexPatches** patches);
+/// Attaches the patches of `from` (if it has any) to `to` as well: a matrix on the same layout
+/// with another pattern (e.g. a proxy energy's Galerkin Hessian).
+PetscErrorCode share_vertex_patches(Mat from, Mat to);
 
 }  // namespace mlshell

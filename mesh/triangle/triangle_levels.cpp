@@ -171,11 +171,26 @@ const ShellProlongation& TriangleLevels::direct_prolongation(int l) const {
                            std::to_string(l));
   if (!direct_[l]) {
     const int top = hierarchy_->num_levels() - 1;
-    direct_[l] = std::make_unique<ShellProlongation>(
+    direct_[l] = std::make_shared<const ShellProlongation>(
         hierarchy_->levels[first_ + l].mesh, hierarchy_->levels[top].mesh.points,
         intrinsic_embedding(*hierarchy_, first_ + l, top));
   }
   return *direct_[l];
+}
+
+const LevelTransfer& TriangleLevels::direct_transfer(int l) const {
+  direct_prolongation(l);  // checks l
+  if (direct_transfers_.empty()) direct_transfers_.resize(num_levels());
+  if (!direct_transfers_[l]) {
+    const int top = hierarchy_->num_levels() - 1;
+    const DecimationLevel& coarse = hierarchy_->levels[first_ + l];
+    const double cost = static_cast<double>(coarse.mesh.num_triangles()) /
+                        hierarchy_->levels[top].mesh.num_triangles();
+    direct_transfers_[l] = std::make_unique<ShellTransfer>(
+        *layouts_[l], *layouts_[finest()], direct_[l], cost,
+        corners_in_finer(coarse, hierarchy_->levels[top]));
+  }
+  return *direct_transfers_[l];
 }
 
 }  // namespace mlshell

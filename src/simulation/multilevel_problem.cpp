@@ -27,6 +27,14 @@ MultilevelProblem::MultilevelProblem(const Levels& levels, double dt, const Leve
     u_.push_back(u);
     v_.push_back(v);
   }
+  replaced_.resize(problems_.size());
+}
+
+void MultilevelProblem::set_level_objective(int l, std::unique_ptr<Objective> objective) {
+  if (l < 0 || l >= levels_.finest())
+    throw std::logic_error("MultilevelProblem: level " + std::to_string(l) +
+                           " is not a coarse level");
+  replaced_[l] = std::move(objective);
 }
 
 MultilevelProblem::~MultilevelProblem() {

@@ -1,6 +1,8 @@
 // A scene run end to end (see simulation.hpp).
 #include "mlshell/simulation.hpp"
 
+#include "mlshell/proxy_energy.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -321,6 +323,18 @@ void Simulation::setup_triangles() {
       if (l < t.finest()) problem->extend_pattern(t.galerkin_pairs(l));
       return problem;
     });
+    if (multilevel && options_.solver->proxy_coarse_energy)
+      for (int l = 0; l < t.finest(); ++l) {
+        Vec template_vector;
+        Mat pattern;
+        PetscCallAbort(comm_, t.layout(l).create_vector(&template_vector));
+        PetscCallAbort(comm_, multilevel_->level(l).create_matrix(&pattern));
+        multilevel_->set_level_objective(
+            l, std::make_unique<ProxyEnergy>(multilevel_->level(t.finest()), t.direct_transfer(l),
+                                             template_vector, pattern));
+        PetscCallAbort(comm_, VecDestroy(&template_vector));
+        PetscCallAbort(comm_, MatDestroy(&pattern));
+      }
   }
   const TriangleDiscretization& disc = t.discretization(t.finest());
   for (const auto& p : scene_.probes) {

@@ -44,6 +44,9 @@ class TriangleLevels final : public Levels {
   const ShellProlongation& prolongation(int l) const { return *prolongations_[l]; }
   /// The direct P^l from level l to the finest (built on first use; P^L is not defined).
   const ShellProlongation& direct_prolongation(int l) const;
+  /// P^l on distributed vectors, level l → the finest (built on first use; collective): the
+  /// transfer of the proxy energies Ψ(P^l(x_l)) (proxy_energy.hpp).
+  const LevelTransfer& direct_transfer(int l) const;
   /// Point pairs of level l (l < finest) that the Galerkin product J_Pᵀ H J_P couples beyond
   /// level l's element stencils, H with level l + 1's pattern (its own such pairs included): a
   /// fine vertex depends on the three corners of its coarse triangle, so two coarse triangles
@@ -57,7 +60,8 @@ class TriangleLevels final : public Levels {
   std::vector<std::unique_ptr<ParallelLayout>> layouts_;
   std::vector<std::shared_ptr<const ShellProlongation>> prolongations_;
   std::vector<std::unique_ptr<LevelTransfer>> transfers_;
-  mutable std::vector<std::unique_ptr<ShellProlongation>> direct_;
+  mutable std::vector<std::shared_ptr<const ShellProlongation>> direct_;
+  mutable std::vector<std::unique_ptr<LevelTransfer>> direct_transfers_;
   std::vector<std::vector<std::array<int, 2>>> galerkin_pairs_;
   void find_galerkin_pairs();
 };

@@ -1,0 +1,69 @@
+#include "mlshell/proxy_energy.hpp"
+
+#include "mlshell/vertex_patches.hpp"
+
+namespace mlshell {
+
+ProxyEnergy::ProxyEnergy(Objective& finest, const LevelTransfer& direct, Vec coarse_template,
+                         Mat pattern)
+    : finest_(finest), direct_(direct) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(coarse_template));
+  PetscCallAbort(comm, finest_.create_hessian(&fine_h_));
+  PetscCallAbort(comm, MatCreateVecs(fine_h_, &fine_u_, &fine_g_));
+  // The Galerkin product's pattern (symbolic at the rest state; the values come per call).
+  Vec rest;
+  PetscCallAbort(comm, VecDuplicate(coarse_template, &rest));
+  PetscCallAbort(comm, VecSet(rest, 0.0));
+  PetscCallAbort(comm, MatZeroEntries(fine_h_));
+  PetscCallAbort(comm, direct_.coarse_operator(rest, fine_h_, MAT_INITIAL_MATRIX, &galerkin_));
+  PetscCallAbort(comm, VecDestroy(&rest));
+  PetscCallAbort(comm, MatDuplicate(galerkin_, MAT_DO_NOT_COPY_VALUES, &template_));
+  if (pattern) {
+    PetscCallAbort(comm, MatAXPY(template_, 1.0, pattern, DIFFERENT_NONZERO_PATTERN));
+    // The level's vertex patches (-tao_rmtr_smoother_pc vpatch) hold for this pattern too.
+    PetscCallAbort(comm, share_vertex_patches(pattern, template_));
+  }
+  PetscCallAbort(comm, MatZeroEntries(template_));
+}
+
+ProxyEnergy::~ProxyEnergy() {
+  VecDestroy(&fine_u_);
+  VecDestroy(&fine_g_);
+  MatDestroy(&fine_h_);
+  MatDestroy(&galerkin_);
+  MatDestroy(&template_);
+}
+
+PetscErrorCode ProxyEnergy::objective(Vec u, PetscReal* f, Vec g) {
+  PetscFunctionBeginUser;
+  PetscCall(direct_.prolong(u, fine_u_));
+  PetscCall(finest_.objective(fine_u_, f, g ? fine_g_ : nullptr));
+  if (g) PetscCall(direct_.restrict_gradient(u, fine_g_, g));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProxyEnergy::hessian(Vec u, Mat H) {
+  PetscFunctionBeginUser;
+  PetscCall(direct_.prolong(u, fine_u_));
+  PetscCall(finest_.hessian(fine_u_, fine_h_));
+  PetscCall(direct_.coarse_operator(u, fine_h_, MAT_REUSE_MATRIX, &galerkin_));
+  PetscCall(MatZeroEntries(H));
+  PetscCall(MatAXPY(H, 1.0, galerkin_, SUBSET_NONZERO_PATTERN));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProxyEnergy::create_hessian(Mat* H) const {
+  PetscFunctionBeginUser;
+  PetscCall(MatDuplicate(template_, MAT_DO_NOT_COPY_VALUES, H));
+  PetscCall(share_vertex_patches(template_, *H));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProxyEnergy::force_scale(Vec u, PetscReal* scale) {
+  PetscFunctionBeginUser;
+  PetscCall(direct_.prolong(u, fine_u_));
+  PetscCall(finest_.force_scale(fine_u_, scale));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell
