@@ -435,6 +435,11 @@ MUTATIONS = [
      "      if (false)\n        PetscCall(pull_into_radius(",
      "a shell prolongation that stretches a coarse step beyond the fine radius is tried as it is "
      "(eq. 4.7 broken on triangle levels)", ()),
+    ("proxy-gradient-not-restricted", "src/physics/proxy_energy.cpp",
+     "  if (g) PetscCall(direct_.restrict_gradient(u, fine_g_, g));",
+     "  if (g) PetscCall(direct_.project(fine_g_, g));",
+     "the proxy energy's gradient takes the fine gradient at the surviving vertices instead of "
+     "J_P(x)ᵀ∇Ψ", ()),
     ("collapse-chart-fold-unchecked", "mesh/decimation/collapse_chart.cpp",
      "  bool ok = place_kept_lscm() && after_valid();", "  bool ok = place_kept_lscm();",
      "a collapse whose LSCM after chart folds keeps it (points snapped across the fold, no "
