@@ -6,7 +6,8 @@
 //              paper 2) or Σ_t ½ δθᵀ K_t δθ over each triangle's three hinges (midedge_bending.hpp)
 //   inertia    1/(2 dt²) (u − û)ᵀ M (u − û), M the consistent P1 mass of the area density ρτ
 //              (also the proximal term ½h⁻²‖x − xᵗ‖²_M of quasistatics)
-//   pressure   −s(t) p (V(x) − V(X)), V the volume enclosed by a closed surface
+//   pressure   −s(t) p (V(x) − V(X)), V the volume enclosed by a closed surface, each face's
+//              share taken about the rest centroid (so its Hessian can be projected per face)
 //   clamp      hinges between each clamped boundary edge's triangle and a virtual triangle,
 //              its rest mirror through the edge midpoint, moved with the clamp's motion: the
 //              boundary keeps its rest slope (θ̄ = 0) with the shell's own bending stiffness;
@@ -136,7 +137,18 @@ class TriangleInertiaTerm final : public EnergyTerm {
   Mat mass_ = nullptr;
 };
 
-/// Pressure work on a closed surface: −s(t) p (V(X + u) − V(X)), V = Σ_t x₀·(x₁ × x₂)/6.
+/// One face's pressure work about the centre c: −p V_t(x − c) with V_t(y) = y₀·(y₁ × y₂)/6
+/// (enclosed_volume.hpp), and where the pointers are not null its gradient and its Hessian
+/// −p ∇²V_t, projected onto the PSD cone (psd_projection.hpp) if `project`.
+double pressure_element(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
+                        const Eigen::Vector3d& x2, const Eigen::Vector3d& centre, double pressure,
+                        bool project, Vector9* grad, Matrix9* hess);
+
+/// Pressure work on a closed, outward-oriented surface: −s(t) p (V(X + u) − V(X)) with
+/// V(x) = Σ_t V_t(x − c), each face's volume about the centroid c of the rest points (the same
+/// total as about any point on a closed surface; pressure_term.cpp says why the centre matters
+/// for the projected Hessian). With -mlshell_hessian_psd each face's Hessian is projected onto
+/// the PSD cone, otherwise the exact Hessian is assembled.
 class PressureTerm final : public EnergyTerm {
  public:
   PressureTerm(const TriangleDiscretization& disc, const ParallelLayout& layout, double pressure,
@@ -144,11 +156,19 @@ class PressureTerm final : public EnergyTerm {
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
   double scale() const;
+  /// V(X), summed over the ranks (each face counted once): > 0 for an outward-oriented closed
+  /// surface, < 0 for one oriented inwards.
+  double enclosed_volume() const { return enclosed_volume_; }
+  /// c, the mean of the rest points of all ranks.
+  const Eigen::Vector3d& centre() const { return centre_; }
 
  private:
   std::vector<std::array<PetscInt, 3>> elements_;
   std::vector<Point3> reference_;
-  double pressure_, ramp_time_, reference_volume_ = 0.0;  // this rank's part of V(X)
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
+  double pressure_, ramp_time_;
+  double reference_volume_ = 0.0;  // this rank's part of V(X)
+  double enclosed_volume_ = 0.0;   // V(X) of all ranks
 };
 
 /// The rotation part of a clamp: one hinge per clamped boundary edge with a virtual fourth
