@@ -6,7 +6,7 @@
 //                             default LU by MUMPS)
 //   α₀ = min(1, max_step(x, p))   the objective's admissible step (CCD for contact; 1 today)
 //   α ← α/2 until f(x + αp) ≤ f(x) + c₁ α ∇fᵀp   (Armijo, -tao_pnewton_c1 1e-4)
-// A singular or indefinite H (a free rigid motion) is shifted, H + τI with τ
+// A singular or indefinite H (a free rigid motion, pressure terms) is shifted, H + τI with τ
 // from 1e-8·max|diag H| growing ×100, until the solve succeeds and p descends.
 // Stopping: TAO's tolerances on ‖∇f‖. When the line search finds no decrease above the rounding
 // error of f (Objective::evaluation_error), or 20 steps in a row change f by no more than that

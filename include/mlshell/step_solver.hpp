@@ -65,9 +65,12 @@ struct SolveReport {
 /// step solver" in -help):
 ///   -mlshell_step_solver tao|snes  TAO minimises f (default), SNES solves grad f = 0
 ///   -mlshell_hessian_psd           every non-convex element Hessian (membranes, hinges, the
-///                                  shell material, the pressure's faces) is projected onto the PSD
-///                                  cone before assembly (projected Newton, paper 2 §4.5); default:
-///                                  on for -tao_type pnewton, off otherwise
+///                                  shell material) is projected onto the PSD cone before
+///                                  assembly (projected Newton, paper 2 §4.5); default: on for
+///                                  -tao_type pnewton, off otherwise
+///   -mlshell_pressure_psd          with -mlshell_hessian_psd, the pressure's Hessian too, per edge
+///                                  (pressure_term.cpp); default off: its exact Hessian keeps
+///                                  Newton quadratic on a stable balloon (docs/solvers.md)
 ///   -mlshell_force_rtol 1e-8       |g| < max(-tao_gatol, this × ‖f_ext‖)
 struct StepSolverOptions {
   bool snes = false;
@@ -75,6 +78,7 @@ struct StepSolverOptions {
   /// default "rmtr").
   std::string type = "rmtr";
   bool hessian_psd = false;
+  bool pressure_psd = false;
   PetscReal force_rtol = 1e-8;
   /// Reads the group (invalid values: std::invalid_argument naming the option and value).
   static StepSolverOptions from_options(MPI_Comm comm);
@@ -88,9 +92,9 @@ struct StepSolverOptions {
 /// λ²) or loads carrying the shell a million times its size, in one step. A divergent solve
 /// passes it within a few dozen iterations, as its energy falls super-exponentially (a balloon
 /// at 50 times its limit pressure: rmtr after 4 iterations, bntr 6, tr 8, bnls within its
-/// first line search; pnewton after 6 since the pressure's Hessian is projected per face, after
-/// 94 and 75 at 250 times while it was shifted instead): a larger factor would cost those few
-/// iterations more, a smaller one would bring no earlier stop worth the lost margin.
+/// first line search; pnewton, whose PSD-projected Hessian keeps its steps short, after 94,
+/// and after 75 at 250 times): a larger factor would cost those few iterations more, a smaller
+/// one would bring no earlier stop worth the lost margin.
 constexpr double kUnboundedEnergyFactor = 1e6;
 
 /// The default of -mlshell_hessian_psd for a solver type: on for pnewton.

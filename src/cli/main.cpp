@@ -61,6 +61,8 @@ const char* kUsage =
     "                              -snes_*, -ksp_*, -pc_* options) instead of TAO\n"
     "  -mlshell_hessian_psd        project non-convex element Hessians onto the PSD cone\n"
     "                              (default: on for -tao_type pnewton)\n"
+    "  -mlshell_pressure_psd       with it, project the pressure's Hessian too (per edge;\n"
+    "                              default off: exact, Newton stays quadratic on a balloon)\n"
     "  -options_file FILE          PETSc options from FILE (plain or .yaml); the scene may name\n"
     "                              its default one (solver.options_file), which FILE replaces;\n"
     "                              the command line's own options win over both\n"

@@ -1,7 +1,7 @@
 // Triangle shells on 1 and 2 ranks give the same answer to round-off (run under mpiexec -n 2,
 // ctest mpi.two_ranks): energy, gradient and Hessian of every effect (hinge and midedge
-// bending; exact and PSD-projected Hessians), the per-face output fields, the pressure's centre
-// and enclosed volume (and its refusal of an inward surface), and a quasistatic solve's final
+// bending; exact and PSD-projected Hessians), the per-face output fields, the pressure's enclosed
+// volume (and its refusal of an inward surface), and a quasistatic solve's final
 // state, compared in natural order with the same problem built on PETSC_COMM_SELF on each rank.
 #include <cmath>
 
@@ -103,9 +103,9 @@ TEST(MpiTriangleShell, EnergyGradientHessianAndFieldsAgreeWithOneRank) {
   }
 }
 
-// The pressure's centre and V(X) are sums over the ranks: the same as on one rank, and an
+// The pressure's V(X) is a sum over the ranks: the same as on one rank, and an
 // inward surface is refused on every rank with the same message.
-TEST(MpiTriangleShell, PressureCentreVolumeAndOrientationAgreeWithOneRank) {
+TEST(MpiTriangleShell, PressureVolumeAndOrientationAgreeWithOneRank) {
   const char* material =
       "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, thickness: "
       "0.01, volume_density: 500}\n"
@@ -139,8 +139,6 @@ TEST(MpiTriangleShell, PressureCentreVolumeAndOrientationAgreeWithOneRank) {
       EXPECT_GT(terms[0]->enclosed_volume(), 0.0);
       EXPECT_NEAR(terms[0]->enclosed_volume(), terms[1]->enclosed_volume(),
                   1e-13 * terms[1]->enclosed_volume());
-      EXPECT_LE((terms[0]->centre() - terms[1]->centre()).norm(), 1e-14);
-      EXPECT_LE((terms[0]->centre() - Eigen::Vector3d(2.0, 1.0, -1.0)).norm(), 1e-12);
     }
   }
 }

@@ -201,49 +201,36 @@ std::string pressure_scene(const std::string& geometry, double pressure) {
 
 }  // namespace
 
-// The faces' volumes are taken about the rest centroid c: on a sphere far from the origin the
-// energy is still −p (V(x) − V(X)) (about any point), the exact Hessian matches finite
-// differences, and the projected Hessian (-mlshell_hessian_psd) is PSD and the same as that of
-// the same sphere at the origin.
-TEST(TriangleShell, PressureIsTakenAboutTheRestCentroid) {
+// The balloon's sphere (examples/triangle/balloon.yaml), at the origin and far from it, inflated
+// by a displacement: the assembled exact Hessian (Σ_e M_e) is indefinite, the projected one
+// (-mlshell_hessian_psd, each M_e projected) is PSD, and both are the same wherever the body
+// sits (no centre). V(X) is the volume about the origin.
+TEST(TriangleShell, PressureHessianPerEdgeIsPsdWhenProjected) {
   const Point3 offset(3.0, -2.0, 1.0);
-  const auto obj = write_sphere_obj("offset_sphere", 0.5, 2, offset, false);
+  const auto obj = write_sphere_obj("offset_sphere", 0.1, 3, offset, false);
   const Scene far = triangle_scene(
-      "offset_pressure", pressure_scene("geometry: {mesh: {obj: " + obj.string() + "}}\n", 1000));
+      "offset_pressure", pressure_scene("geometry: {mesh: {obj: " + obj.string() + "}}\n", 200));
   const Scene near = triangle_scene(
       "origin_pressure",
-      pressure_scene("geometry: {mesh: {generator: sphere, radius: 0.5, subdivisions: 2}}\n",
-                     1000));
+      pressure_scene("geometry: {mesh: {generator: sphere, radius: 0.1, subdivisions: 3}}\n",
+                     200));
   TriangleProblem tp(far, PETSC_COMM_SELF), at_origin(near, PETSC_COMM_SELF);
   std::filesystem::remove(obj);
   const auto* pressure = dynamic_cast<const PressureTerm*>(tp.problem->terms()[1].get());
   const auto* pressure0 = dynamic_cast<const PressureTerm*>(at_origin.problem->terms()[1].get());
   ASSERT_TRUE(pressure && pressure0);
-  EXPECT_LE((pressure->centre() - offset).norm(), 1e-12);
-  EXPECT_LE(pressure0->centre().norm(), 1e-12);
   const auto& X = tp.disc().points();
   double volume = 0.0;  // about the origin
   for (const Triangle& t : tp.disc().mesh().triangles)
     volume += X[t[0]].dot(X[t[1]].cross(X[t[2]])) / 6.0;
   EXPECT_GT(pressure->enclosed_volume(), 0.0);
   EXPECT_NEAR(pressure->enclosed_volume(), volume, 1e-12 * volume);
-  EXPECT_NEAR(pressure->enclosed_volume(), pressure0->enclosed_volume(), 1e-12 * volume);
+  EXPECT_NEAR(pressure->enclosed_volume(), pressure0->enclosed_volume(), 1e-11 * volume);
 
-  const auto u = random_displacement(3 * tp.disc().num_points(), 0.02, 4);
-  expect_derivatives(tp, *pressure, u, 1e-6, "pressure about c");
-  CompensatedSum e;
-  PetscCallAbort(PETSC_COMM_SELF, pressure->add(u, e, nullptr, nullptr));
-  double moved = 0.0;
-  for (const Triangle& t : tp.disc().mesh().triangles) {
-    Eigen::Vector3d x[3];
-    for (int k = 0; k < 3; ++k)
-      x[k] = X[t[k]] + Eigen::Vector3d(u[3 * t[k]], u[3 * t[k] + 1], u[3 * t[k] + 2]);
-    moved += x[0].dot(x[1].cross(x[2])) / 6.0;
-  }
-  // The two totals differ by the cancellation of the faces' volumes about the origin.
-  EXPECT_NEAR(e.value(), -1000.0 * (moved - volume), 1e-12 * 1000.0 * offset.norm() * volume);
-
-  // Exact and projected Hessians of the far sphere against those of the sphere at the origin.
+  // Inflated by 10 % and jiggled by 1 mm.
+  auto u = random_displacement(3 * tp.disc().num_points(), 1e-3, 4);
+  for (int i = 0; i < tp.disc().num_points(); ++i)
+    for (int c = 0; c < 3; ++c) u[3 * i + c] += 0.1 * (X[i][c] - offset[c]);
   for (const bool project : {false, true}) {
     tp.problem->terms()[1]->set_hessian_projection(project);
     at_origin.problem->terms()[1]->set_hessian_projection(project);
@@ -253,10 +240,11 @@ TEST(TriangleShell, PressureIsTakenAboutTheRestCentroid) {
     MatDestroy(&H0);
     ASSERT_GT(A.norm(), 0.0);
     EXPECT_LE((A - A0).norm(), 1e-12 * A.norm()) << "projected: " << project;
-    EXPECT_LE((A - A.transpose()).norm(), 1e-14 * A.norm());
-    const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A).eigenvalues()[0];
+    EXPECT_EQ((A - A.transpose()).norm(), 0.0);
+    const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly)
+                              .eigenvalues()[0];
     if (project)
-      EXPECT_GE(lowest, -1e-12 * A.norm());
+      EXPECT_GE(lowest, -1e-13 * A.norm());
     else  // −p ∇²V: indefinite
       EXPECT_LT(lowest, -1e-3 * A.norm());
   }
