@@ -208,6 +208,10 @@ bool hessian_projection_default(const std::string& solver_type) {
   return on;
 }
 
+bool term_hessian_projection(const StepSolverOptions& options, const std::string& term) {
+  return options.hessian_psd && (term != "pressure" || options.pressure_psd);
+}
+
 StepSolverOptions StepSolverOptions::from_options(MPI_Comm comm) {
   StepSolverOptions o;
   char kind[64] = "tao";

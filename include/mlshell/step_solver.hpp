@@ -100,6 +100,11 @@ constexpr double kUnboundedEnergyFactor = 1e6;
 /// The default of -mlshell_hessian_psd for a solver type: on for pnewton.
 bool hessian_projection_default(const std::string& solver_type);
 
+/// Whether the energy term named `term` projects its element Hessians: every term under
+/// -mlshell_hessian_psd except the pressure, which needs -mlshell_pressure_psd as well (its
+/// exact Hessian keeps projected Newton quadratic on a stable balloon, docs/solvers.md).
+bool term_hessian_projection(const StepSolverOptions& options, const std::string& term);
+
 /// For `mlshell -help`: the options of the solver that `options` (as read already) choose
 /// (TAO's type, rmtr by default, with mlshell's defaults in place; or SNES), printed by PETSc's
 /// help as a run would read them.

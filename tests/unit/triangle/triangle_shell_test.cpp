@@ -500,3 +500,17 @@ TEST(TriangleShell, ProjectedNewtonAssemblesAPositiveSemiDefiniteHessian) {
   EXPECT_FALSE(hessian_projection_default("rmtr"));
   VecDestroy(&u);
 }
+
+// -mlshell_hessian_psd projects every term but the pressure, whose Hessian is projected only
+// with -mlshell_pressure_psd too.
+TEST(TriangleShell, PressureHessianIsProjectedOnlyWhenAsked) {
+  for (const bool psd : {false, true})
+    for (const bool pressure_psd : {false, true}) {
+      StepSolverOptions o;
+      o.hessian_psd = psd;
+      o.pressure_psd = pressure_psd;
+      for (const std::string term : {"elastic", "clamp", "inertia"})
+        EXPECT_EQ(term_hessian_projection(o, term), psd) << term;
+      EXPECT_EQ(term_hessian_projection(o, "pressure"), psd && pressure_psd);
+    }
+}
