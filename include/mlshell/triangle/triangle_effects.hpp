@@ -153,8 +153,8 @@ Matrix6d pressure_edge_hessian(const Eigen::Vector3d& xc, const Eigen::Vector3d&
 /// Pressure work on a closed, outward-oriented surface: −s(t) p (V(X + u) − V(X)) with
 /// V(x) = Σ_t x₀·(x₁ × x₂)/6, its energy and gradient summed over the faces this rank
 /// assembles, its Hessian over the edges (pressure_edge_hessian) whose first face (Hinge) this
-/// rank assembles: exact, or with -mlshell_hessian_psd each edge's block projected onto the
-/// PSD cone.
+/// rank assembles: exact, or with set_hessian_projection (-mlshell_hessian_psd with
+/// -mlshell_pressure_psd) each edge's block projected onto the PSD cone.
 class PressureTerm final : public EnergyTerm {
  public:
   PressureTerm(const TriangleDiscretization& disc, const ParallelLayout& layout, double pressure,

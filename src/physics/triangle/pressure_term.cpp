@@ -11,13 +11,16 @@
 // face's block (±[x_k]×/6, which grows with the distance from the origin), M_e depends on a
 // difference of positions only: it has the size p·h of the mesh and no centre is needed.
 //
-// Projected Newton (paper 2 §4.5, -mlshell_hessian_psd) projects each M_e onto the PSD cone, in
-// closed form. With S = UΣVᵀ, M_e has the eigenpairs ±σ_i, (u_i; ±v_i)/√2, so
+// When asked (set_hessian_projection: -mlshell_hessian_psd with -mlshell_pressure_psd,
+// term_hessian_projection in step_solver.hpp) each M_e is projected onto the PSD cone in closed
+// form. With S = UΣVᵀ, M_e has the eigenpairs ±σ_i, (u_i; ±v_i)/√2, so
 //   P(M_e) = ½ [[(SSᵀ)^½, S], [Sᵀ, (SᵀS)^½]] = ½ M_e + ½ blockdiag((SSᵀ)^½, (SᵀS)^½),
 // and for S = s[w]×: SSᵀ = SᵀS = s²(|w|² I − w wᵀ), whose square root is |s| |w| (I − ŵŵᵀ)
 // (I − ŵŵᵀ is a projector). The added curvature, (|p|/12)(|w| I − w wᵀ/|w|) on each of a and b,
 // is of order p·h per edge, where projecting a whole face's 9 × 9 block (zero trace, so always
-// indefinite) adds p·R for a body of size R.
+// indefinite) adds p·R for a body of size R. Either makes Newton linear on a stable balloon,
+// whose exact Hessian the membrane keeps positive definite, so by default the exact Hessian is
+// assembled also under projected Newton (docs/solvers.md has the counts).
 // Each edge is assembled once, by the rank of its first face (Hinge::faces[0]), whose stencil
 // holds all four vertices, as the elastic term's hinges are.
 #include <mpi.h>
@@ -61,8 +64,8 @@ PressureTerm::PressureTerm(const TriangleDiscretization& disc, const ParallelLay
   }
   for (const Hinge& h : disc.topology().hinges())
     if (layout.face_owner(h.faces[0]) == layout.rank())
-      edges_.push_back({layout.local_of(h.v[0]), layout.local_of(h.v[1]),
-                        layout.local_of(h.v[2]), layout.local_of(h.v[3])});
+      edges_.push_back({layout.local_of(h.v[0]), layout.local_of(h.v[1]), layout.local_of(h.v[2]),
+                        layout.local_of(h.v[3])});
   // Each face is assembled on one rank (its owner): the sum is V(X), each face counted once.
   enclosed_volume_ = reference_volume_;
   MPI_Allreduce(MPI_IN_PLACE, &enclosed_volume_, 1, MPI_DOUBLE, MPI_SUM, layout.comm());
@@ -82,8 +85,8 @@ PetscErrorCode PressureTerm::add(const std::vector<double>& u, CompensatedSum& e
   Vector9 g;
   std::vector<PetscInt> nodes(3);
   for (const auto& e : elements_) {
-    const double v =
-        triangle_volume(position(e[0]), position(e[1]), position(e[2]), grad ? &g : nullptr, nullptr);
+    const double v = triangle_volume(position(e[0]), position(e[1]), position(e[2]),
+                                     grad ? &g : nullptr, nullptr);
     energy.add(-p * v);
     if (grad) {
       g *= -p;
@@ -95,7 +98,8 @@ PetscErrorCode PressureTerm::add(const std::vector<double>& u, CompensatedSum& e
   if (hess) {
     nodes.resize(2);
     for (const auto& e : edges_) {
-      const Matrix6d M = pressure_edge_hessian(position(e[2]), position(e[3]), p, projects_hessian());
+      const Matrix6d M =
+          pressure_edge_hessian(position(e[2]), position(e[3]), p, projects_hessian());
       nodes = {e[0], e[1]};
       PetscCall(add_local_hessian(hess, nodes, M.data()));  // symmetric: row = column major
     }

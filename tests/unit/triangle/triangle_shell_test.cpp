@@ -203,7 +203,7 @@ std::string pressure_scene(const std::string& geometry, double pressure) {
 
 // The balloon's sphere (examples/triangle/balloon.yaml), at the origin and far from it, inflated
 // by a displacement: the assembled exact Hessian (Σ_e M_e) is indefinite, the projected one
-// (-mlshell_hessian_psd, each M_e projected) is PSD, and both are the same wherever the body
+// (-mlshell_pressure_psd, each M_e projected) is PSD, and both are the same wherever the body
 // sits (no centre). V(X) is the volume about the origin.
 TEST(TriangleShell, PressureHessianPerEdgeIsPsdWhenProjected) {
   const Point3 offset(3.0, -2.0, 1.0);
@@ -212,8 +212,7 @@ TEST(TriangleShell, PressureHessianPerEdgeIsPsdWhenProjected) {
       "offset_pressure", pressure_scene("geometry: {mesh: {obj: " + obj.string() + "}}\n", 200));
   const Scene near = triangle_scene(
       "origin_pressure",
-      pressure_scene("geometry: {mesh: {generator: sphere, radius: 0.1, subdivisions: 3}}\n",
-                     200));
+      pressure_scene("geometry: {mesh: {generator: sphere, radius: 0.1, subdivisions: 3}}\n", 200));
   TriangleProblem tp(far, PETSC_COMM_SELF), at_origin(near, PETSC_COMM_SELF);
   std::filesystem::remove(obj);
   const auto* pressure = dynamic_cast<const PressureTerm*>(tp.problem->terms()[1].get());
@@ -241,8 +240,8 @@ TEST(TriangleShell, PressureHessianPerEdgeIsPsdWhenProjected) {
     ASSERT_GT(A.norm(), 0.0);
     EXPECT_LE((A - A0).norm(), 1e-12 * A.norm()) << "projected: " << project;
     EXPECT_EQ((A - A.transpose()).norm(), 0.0);
-    const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly)
-                              .eigenvalues()[0];
+    const double lowest =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues()[0];
     if (project)
       EXPECT_GE(lowest, -1e-13 * A.norm());
     else  // −p ∇²V: indefinite

@@ -1,7 +1,7 @@
 // The pressure Hessian −p∇²V split over the edges (pressure_edge_hessian): the edges' blocks sum
 // to the faces' exact Hessians on a closed surface (so the derived block, its sign included, is
 // that of enclosed_volume's finite-difference-tested face Hessians), and the closed-form PSD
-// projection of -mlshell_hessian_psd is the eigen-decomposition one (project_to_psd), PSD, and
+// projection of -mlshell_pressure_psd is the eigen-decomposition one (project_to_psd), PSD, and
 // the same wherever the edge sits.
 #include <gtest/gtest.h>
 
