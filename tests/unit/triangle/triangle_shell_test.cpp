@@ -501,8 +501,17 @@ TEST(TriangleShell, ProjectedNewtonAssemblesAPositiveSemiDefiniteHessian) {
 }
 
 // -mlshell_hessian_psd projects every term but the pressure, whose Hessian is projected only
-// with -mlshell_pressure_psd too.
+// with -mlshell_pressure_psd too (off by default).
 TEST(TriangleShell, PressureHessianIsProjectedOnlyWhenAsked) {
+  for (const bool given : {false, true}) {
+    PetscOptionsSetValue(nullptr, "-mlshell_hessian_psd", "true");
+    if (given) PetscOptionsSetValue(nullptr, "-mlshell_pressure_psd", "true");
+    const StepSolverOptions read = StepSolverOptions::from_options(PETSC_COMM_SELF);
+    PetscOptionsClearValue(nullptr, "-mlshell_hessian_psd");
+    PetscOptionsClearValue(nullptr, "-mlshell_pressure_psd");
+    EXPECT_TRUE(read.hessian_psd);
+    EXPECT_EQ(read.pressure_psd, given);
+  }
   for (const bool psd : {false, true})
     for (const bool pressure_psd : {false, true}) {
       StepSolverOptions o;
