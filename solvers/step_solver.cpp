@@ -122,6 +122,12 @@ PetscErrorCode read_step_solver_options(MPI_Comm comm, StepSolverOptions* o, cha
                              "project every non-convex element Hessian onto the PSD cone "
                              "(default: on for -tao_type pnewton, off otherwise)",
                              "", psd, &psd, &psd_given));
+  PetscBool pressure_psd = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-mlshell_pressure_psd",
+                             "with -mlshell_hessian_psd, project the pressure's Hessian too, per "
+                             "edge (off: its exact Hessian, shifted where indefinite)",
+                             "", pressure_psd, &pressure_psd, nullptr));
+  o->pressure_psd = pressure_psd;
   PetscCall(PetscOptionsReal("-mlshell_force_rtol",
                              "gradient tolerance relative to the external forces: "
                              "|g| < max(-tao_gatol, this * |f_ext|)",
@@ -210,6 +216,10 @@ PetscErrorCode ksp_defaults(KSP ksp) {
 bool hessian_projection_default(const std::string& solver_type) {
   PetscBool on = solver_type == "pnewton" ? PETSC_TRUE : PETSC_FALSE;
   return on;
+}
+
+bool term_hessian_projection(const StepSolverOptions& options, const std::string& term) {
+  return options.hessian_psd && (term != "pressure" || options.pressure_psd);
 }
 
 StepSolverOptions StepSolverOptions::from_options(MPI_Comm comm) {

@@ -68,6 +68,9 @@ struct SolveReport {
 ///                                  shell material) is projected onto the PSD cone before
 ///                                  assembly (projected Newton, paper 2 §4.5); default: on for
 ///                                  -tao_type pnewton, off otherwise
+///   -mlshell_pressure_psd          with -mlshell_hessian_psd, the pressure's Hessian too, per edge
+///                                  (pressure_term.cpp); default off: its exact Hessian keeps
+///                                  Newton quadratic on a stable balloon (docs/solvers.md)
 ///   -mlshell_force_rtol 1e-8       |g| < max(-tao_gatol, this × ‖f_ext‖)
 struct StepSolverOptions {
   bool snes = false;
@@ -75,6 +78,7 @@ struct StepSolverOptions {
   /// default "rmtr").
   std::string type = "rmtr";
   bool hessian_psd = false;
+  bool pressure_psd = false;
   PetscReal force_rtol = 1e-8;
   /// -mlshell_coarse_energy own|proxy: what RMTR's first-order coarse models minimise on the
   /// coarse levels of a triangle hierarchy: each coarse mesh's own energy, or paper 2's proxy
@@ -99,6 +103,11 @@ constexpr double kUnboundedEnergyFactor = 1e6;
 
 /// The default of -mlshell_hessian_psd for a solver type: on for pnewton.
 bool hessian_projection_default(const std::string& solver_type);
+
+/// Whether the energy term named `term` projects its element Hessians: every term under
+/// -mlshell_hessian_psd except the pressure, which needs -mlshell_pressure_psd as well (its
+/// exact Hessian keeps projected Newton quadratic on a stable balloon, docs/solvers.md).
+bool term_hessian_projection(const StepSolverOptions& options, const std::string& term);
 
 /// For `mlshell -help`: the options of the solver that `options` (as read already) choose
 /// (TAO's type, rmtr by default, with mlshell's defaults in place; or SNES), printed by PETSc's

@@ -67,6 +67,8 @@ const char* kUsage =
     "  -mlshell_coarse_energy proxy RMTR on a triangle hierarchy: coarse levels minimise the\n"
     "                              finest energy at their prolongation (paper 2 eq. 2; default\n"
     "                              own: each coarse mesh's own energy)\n"
+    "  -mlshell_pressure_psd       with it, project the pressure's Hessian too (per edge;\n"
+    "                              default off: exact, Newton stays quadratic on a balloon)\n"
     "  -options_file FILE          PETSc options from FILE (plain or .yaml); the scene may name\n"
     "                              its default one (solver.options_file), which FILE replaces;\n"
     "                              the command line's own options win over both\n"

@@ -68,7 +68,8 @@ effects:                     optional list; only the listed effects are simulate
                 penalty: beta, tolerance: t}   t (m, > 0): augmented Lagrangian to |u - d| <= t
   - clamp: {where: CURVE, motion: MOTION, sigma: s, penalty: beta, rotation_penalty: b}
   - pressure: {pressure: p, ramp: bool}   Pa; work p (V(x) - V(X)) of the enclosed volume of a
-                             closed triangle mesh (outward normals: p > 0 inflates)
+                             closed triangle mesh (outward normals: p > 0 inflates; an open
+                             or inward-oriented mesh is refused)
     ramp: false (default) or true: the load grows linearly from 0 to full over the steps.
     components: non-empty subset of x, y, z, no repeats (default all three).
     sigma: > 0 (default 5): penalty beta = (Y tau / Y tau_denim) (1 m / L) (h / L)^-sigma for the

@@ -157,9 +157,9 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   disc_ = &levels_->discretization(levels_->finest());
   layout_ = &levels_->layout(levels_->finest());
   problem_ = &multilevel_->level(levels_->finest());
-  const bool psd = options_.solver->hessian_psd;
   for (int l = 0; l < multilevel_->num_levels(); ++l)
-    for (const auto& t : multilevel_->level(l).terms()) t->set_hessian_projection(psd);
+    for (const auto& t : multilevel_->level(l).terms())
+      t->set_hessian_projection(term_hessian_projection(*options_.solver, t->name()));
   PetscCallAbort(comm, layout_->create_vector(&u_));
   PetscCallAbort(comm, VecDuplicate(u_, &v_));
   PetscCallAbort(comm, VecZeroEntries(v_));

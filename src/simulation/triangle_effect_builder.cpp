@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <iomanip>
+#include <sstream>
 
 #include "mlshell/effect_builder.hpp"
 #include "mlshell/effects.hpp"
@@ -188,8 +190,20 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
         throw SceneError("pressure needs a closed surface; this mesh has " +
                          std::to_string(disc.topology().boundary_loops().size()) +
                          " boundary loop(s)");
-      problem->add_term(
-          std::make_unique<PressureTerm>(disc, layout, p->pressure, p->ramp ? ramp_time : 0.0));
+      auto term =
+          std::make_unique<PressureTerm>(disc, layout, p->pressure, p->ramp ? ramp_time : 0.0);
+      // Inward faces (clockwise seen from outside) enclose a negative volume: a positive
+      // pressure would then deflate the surface. The same total on every rank: all throw.
+      if (!(term->enclosed_volume() > 0.0)) {
+        std::ostringstream message;
+        message << "the closed surface encloses the volume V(X) = " << std::setprecision(6)
+                << term->enclosed_volume()
+                << " m^3 (expected > 0): its faces are oriented inwards, so a positive "
+                   "pressure would deflate it; flip the orientation of every face (reverse "
+                   "the vertex order of each face of the mesh)";
+        throw SceneError(message.str());
+      }
+      problem->add_term(std::move(term));
     }
   });
   return problem;

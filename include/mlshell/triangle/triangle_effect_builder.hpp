@@ -12,7 +12,8 @@ namespace mlshell {
 
 /// The elastic term (membrane + hinges), the proximal term of a quasistatic integrator, and one
 /// term per scene effect (two for a clamp: its penalty and its hinges). Throws SceneError for
-/// selections that select nothing and for pressure on an open surface.
+/// selections that select nothing, for pressure on an open surface and for pressure on a closed
+/// surface oriented inwards (V(X) ≤ 0).
 std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
                                                      const TriangleDiscretization& disc,
                                                      const ParallelLayout& layout,

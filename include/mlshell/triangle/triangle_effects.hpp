@@ -6,7 +6,8 @@
 //              paper 2) or Σ_t ½ δθᵀ K_t δθ over each triangle's three hinges (midedge_bending.hpp)
 //   inertia    1/(2 dt²) (u − û)ᵀ M (u − û), M the consistent P1 mass of the area density ρτ
 //              (also the proximal term ½h⁻²‖x − xᵗ‖²_M of quasistatics)
-//   pressure   −s(t) p (V(x) − V(X)), V the volume enclosed by a closed surface
+//   pressure   −s(t) p (V(x) − V(X)), V the volume enclosed by a closed surface (its Hessian
+//              assembled, and projected, per edge)
 //   clamp      hinges between each clamped boundary edge's triangle and a virtual triangle,
 //              its rest mirror through the edge midpoint, moved with the clamp's motion: the
 //              boundary keeps its rest slope (θ̄ = 0) with the shell's own bending stiffness;
@@ -136,7 +137,24 @@ class TriangleInertiaTerm final : public EnergyTerm {
   Mat mass_ = nullptr;
 };
 
-/// Pressure work on a closed surface: −s(t) p (V(X + u) − V(X)), V = Σ_t x₀·(x₁ × x₂)/6.
+/// 6 × 6 matrices: one edge's Hessian block in (x_a, x_b).
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// One interior edge's share of the pressure Hessian −p∇²V, V = Σ_t x₀·(x₁ × x₂)/6
+/// (enclosed_volume.hpp). V is linear in each vertex and two vertices are coupled only through
+/// the two faces of their edge: for the edge a–b with faces (a, b, c) and (b, a, d),
+///   M_e = [[0, S], [Sᵀ, 0]] in (x_a, x_b),   S = ∂²(−pV)/∂x_a∂x_b = (p/6) [x_c − x_d]×,
+/// and Σ_e M_e = −p∇²V on a closed surface. If `project`, its projection onto the PSD cone in
+/// closed form (pressure_term.cpp): ½ M_e + (|p|/12) blockdiag(P, P), P = |w| I − w wᵀ/|w|,
+/// w = x_c − x_d.
+Matrix6d pressure_edge_hessian(const Eigen::Vector3d& xc, const Eigen::Vector3d& xd,
+                               double pressure, bool project);
+
+/// Pressure work on a closed, outward-oriented surface: −s(t) p (V(X + u) − V(X)) with
+/// V(x) = Σ_t x₀·(x₁ × x₂)/6, its energy and gradient summed over the faces this rank
+/// assembles, its Hessian over the edges (pressure_edge_hessian) whose first face (Hinge) this
+/// rank assembles: exact, or with set_hessian_projection (-mlshell_hessian_psd with
+/// -mlshell_pressure_psd) each edge's block projected onto the PSD cone.
 class PressureTerm final : public EnergyTerm {
  public:
   PressureTerm(const TriangleDiscretization& disc, const ParallelLayout& layout, double pressure,
@@ -144,11 +162,17 @@ class PressureTerm final : public EnergyTerm {
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
   double scale() const;
+  /// V(X), summed over the ranks (each face counted once): > 0 for an outward-oriented closed
+  /// surface, < 0 for one oriented inwards.
+  double enclosed_volume() const { return enclosed_volume_; }
 
  private:
   std::vector<std::array<PetscInt, 3>> elements_;
+  std::vector<std::array<PetscInt, 4>> edges_;  // local (a, b, c, d) of Hinge::v
   std::vector<Point3> reference_;
-  double pressure_, ramp_time_, reference_volume_ = 0.0;  // this rank's part of V(X)
+  double pressure_, ramp_time_;
+  double reference_volume_ = 0.0;  // this rank's part of V(X)
+  double enclosed_volume_ = 0.0;   // V(X) of all ranks
 };
 
 /// The rotation part of a clamp: one hinge per clamped boundary edge with a virtual fourth

@@ -14,6 +14,7 @@
 
 #include "mlshell/scene.hpp"
 #include "mlshell/triangle/triangle_effect_builder.hpp"
+#include "mlshell/triangle/triangle_generators.hpp"
 #include "mlshell/triangle/triangle_levels.hpp"
 #include "physics_fixtures.hpp"
 
@@ -28,6 +29,25 @@ inline Scene triangle_scene(const std::string& name, const std::string& yaml) {
   Scene scene = parse_scene(file);
   std::filesystem::remove(file);
   return scene;
+}
+
+/// Writes make_sphere(radius, subdivisions) moved by `offset` as an OBJ file (its faces turned
+/// inside out if `inward`) under the temporary folder, named after `name` and the process.
+inline std::filesystem::path write_sphere_obj(const std::string& name, double radius,
+                                              int subdivisions, const Point3& offset, bool inward) {
+  const TriangleMesh sphere = make_sphere(radius, subdivisions);
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("mlshell_" + name + "_" + std::to_string(getpid()) + ".obj");
+  std::ofstream out(file);
+  out.precision(17);
+  for (const Point3& x : sphere.points) {
+    const Point3 y = x + offset;
+    out << "v " << y[0] << ' ' << y[1] << ' ' << y[2] << '\n';
+  }
+  for (const Triangle& t : sphere.triangles)
+    out << "f " << t[0] + 1 << ' ' << (inward ? t[2] : t[1]) + 1 << ' '
+        << (inward ? t[1] : t[2]) + 1 << '\n';
+  return file;
 }
 
 /// The scene's problem on its triangle mesh, on `comm`.

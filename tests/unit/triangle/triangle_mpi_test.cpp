@@ -1,10 +1,11 @@
 // Triangle shells on 1 and 2 ranks give the same answer to round-off (run under mpiexec -n 2,
 // ctest mpi.two_ranks): energy, gradient and Hessian of every effect (hinge and midedge
-// bending), the per-face output
-// fields, and a quasistatic solve's final state, compared in natural order with the same problem
-// built on PETSC_COMM_SELF on each rank.
+// bending; exact and PSD-projected Hessians), the per-face output fields, the pressure's enclosed
+// volume (and its refusal of an inward surface), and a quasistatic solve's final
+// state, compared in natural order with the same problem built on PETSC_COMM_SELF on each rank.
 #include <cmath>
 
+#include "mlshell/triangle/triangle_effects.hpp"
 #include "triangle_fixtures.hpp"
 
 using namespace mlshell;
@@ -83,16 +84,61 @@ TEST(MpiTriangleShell, EnergyGradientHessianAndFieldsAgreeWithOneRank) {
     TriangleProblem distributed(scene, PETSC_COMM_WORLD), serial(scene, PETSC_COMM_SELF);
     ASSERT_GT(distributed.layout().local_elements().size(), 0u);
     ASSERT_LT(distributed.layout().local_elements().size(), distributed.disc().elements().size());
-    const Evaluation a = evaluate(distributed), b = evaluate(serial);
-    EXPECT_NEAR(a.f, b.f, 1e-12 * std::abs(b.f));
-    if (distributed.layout().rank() == 0) {
-      EXPECT_LT(relative_difference(a.gradient, b.gradient), 1e-11);
-      EXPECT_LT(relative_difference(a.hessian_action, b.hessian_action), 1e-11);
-      ASSERT_EQ(a.fields.size(), b.fields.size());
-      ASSERT_EQ(a.fields.size(), 2u);
-      for (size_t k = 0; k < a.fields.size(); ++k)
-        EXPECT_LT(relative_difference(a.fields[k].second, b.fields[k].second), 1e-11)
-            << a.fields[k].first;
+    // Exact Hessians, and those of projected Newton (-mlshell_hessian_psd).
+    for (const bool project : {false, true}) {
+      for (TriangleProblem* tp : {&distributed, &serial})
+        for (const auto& t : tp->problem->terms()) t->set_hessian_projection(project);
+      const Evaluation a = evaluate(distributed), b = evaluate(serial);
+      EXPECT_NEAR(a.f, b.f, 1e-12 * std::abs(b.f));
+      if (distributed.layout().rank() == 0) {
+        EXPECT_LT(relative_difference(a.gradient, b.gradient), 1e-11);
+        EXPECT_LT(relative_difference(a.hessian_action, b.hessian_action), 1e-11) << project;
+        ASSERT_EQ(a.fields.size(), b.fields.size());
+        ASSERT_EQ(a.fields.size(), 2u);
+        for (size_t k = 0; k < a.fields.size(); ++k)
+          EXPECT_LT(relative_difference(a.fields[k].second, b.fields[k].second), 1e-11)
+              << a.fields[k].first;
+      }
+    }
+  }
+}
+
+// The pressure's V(X) is a sum over the ranks: the same as on one rank, and an
+// inward surface is refused on every rank with the same message.
+TEST(MpiTriangleShell, PressureVolumeAndOrientationAgreeWithOneRank) {
+  const char* material =
+      "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, thickness: "
+      "0.01, volume_density: 500}\n"
+      "effects:\n  - pressure: {pressure: 100}\ntime: {dt: 1, steps: 1}\n";
+  for (const bool inward : {false, true}) {
+    const auto obj = write_sphere_obj("mpi_sphere", 1.0, 2, Point3(2.0, 1.0, -1.0), inward);
+    const Scene scene = triangle_scene(
+        "mpi_pressure", "geometry: {mesh: {obj: " + obj.string() + "}}\n" + material);
+    std::string messages[2];
+    const PressureTerm* terms[2] = {nullptr, nullptr};
+    std::unique_ptr<TriangleProblem> problems[2];
+    const MPI_Comm comms[2] = {PETSC_COMM_WORLD, PETSC_COMM_SELF};
+    for (int k = 0; k < 2; ++k) {
+      try {
+        problems[k] = std::make_unique<TriangleProblem>(scene, comms[k]);
+        terms[k] = dynamic_cast<const PressureTerm*>(problems[k]->problem->terms()[1].get());
+      } catch (const SceneError& e) {
+        // The scene file's name differs between the ranks: compare what follows it.
+        messages[k] = std::string(e.what()).substr(scene.file.string().size());
+      }
+    }
+    std::filesystem::remove(obj);
+    if (inward) {
+      EXPECT_NE(messages[0].find(": effects[0].pressure: "), std::string::npos) << messages[0];
+      EXPECT_NE(messages[0].find("oriented inwards"), std::string::npos) << messages[0];
+      EXPECT_EQ(messages[0], messages[1]);
+    } else {
+      ASSERT_TRUE(terms[0] && terms[1]) << messages[0] << messages[1];
+      ASSERT_LT(problems[0]->layout().local_elements().size(),
+                static_cast<size_t>(problems[0]->disc().num_faces()));
+      EXPECT_GT(terms[0]->enclosed_volume(), 0.0);
+      EXPECT_NEAR(terms[0]->enclosed_volume(), terms[1]->enclosed_volume(),
+                  1e-13 * terms[1]->enclosed_volume());
     }
   }
 }

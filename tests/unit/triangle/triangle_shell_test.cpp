@@ -25,13 +25,8 @@ struct TermCheck {
   std::vector<double> g, Hd;
 };
 
-TermCheck evaluate_term(TriangleProblem& tp, const EnergyTerm& term, const std::vector<double>& u,
-                        const std::vector<double>& d) {
-  TermCheck out;
-  CompensatedSum e;
-  out.g.assign(u.size(), 0.0);
-  PetscCallAbort(PETSC_COMM_SELF, term.add(u, e, &out.g, nullptr));
-  out.f = e.value();
+/// The Hessian of one term (alone) at u, on one rank.
+Mat term_hessian(TriangleProblem& tp, const EnergyTerm& term, const std::vector<double>& u) {
   Mat H;
   PetscCallAbort(PETSC_COMM_SELF, tp.problem->create_matrix(&H));
   // The pattern the whole problem's Hessian has (the elastic term fills the element stencils),
@@ -46,6 +41,17 @@ TermCheck evaluate_term(TriangleProblem& tp, const EnergyTerm& term, const std::
   PetscCallAbort(PETSC_COMM_SELF, MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
   PetscCallAbort(PETSC_COMM_SELF, MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
   PetscCallAbort(PETSC_COMM_SELF, term.add_constant_hessian(H));
+  return H;
+}
+
+TermCheck evaluate_term(TriangleProblem& tp, const EnergyTerm& term, const std::vector<double>& u,
+                        const std::vector<double>& d) {
+  TermCheck out;
+  CompensatedSum e;
+  out.g.assign(u.size(), 0.0);
+  PetscCallAbort(PETSC_COMM_SELF, term.add(u, e, &out.g, nullptr));
+  out.f = e.value();
+  Mat H = term_hessian(tp, term, u);
   Vec dv, hd;
   PetscCallAbort(PETSC_COMM_SELF, MatCreateVecs(H, &dv, &hd));
   PetscScalar* a;
@@ -170,6 +176,108 @@ TEST(TriangleShell, PressureMatchesFiniteDifferencesAndTheEnclosedVolume) {
     volume += X[t[0]].dot(X[t[1]].cross(X[t[2]])) / 6.0;
   }
   EXPECT_NEAR(e.value(), -1000.0 * (1.1 * 1.1 * 1.1 - 1.0) * volume, 1e-10 * 1000.0 * volume);
+}
+
+namespace {
+
+/// The dense matrix of H (one rank).
+Eigen::MatrixXd dense(Mat H) {
+  Mat D;
+  PetscCallAbort(PETSC_COMM_SELF, MatConvert(H, MATSEQDENSE, MAT_INITIAL_MATRIX, &D));
+  PetscInt m, n;
+  PetscCallAbort(PETSC_COMM_SELF, MatGetSize(D, &m, &n));
+  const PetscScalar* a;
+  PetscCallAbort(PETSC_COMM_SELF, MatDenseGetArrayRead(D, &a));
+  Eigen::MatrixXd out = Eigen::Map<const Eigen::MatrixXd>(a, m, n);  // column-major, lda = m
+  PetscCallAbort(PETSC_COMM_SELF, MatDenseRestoreArrayRead(D, &a));
+  PetscCallAbort(PETSC_COMM_SELF, MatDestroy(&D));
+  return out;
+}
+
+std::string pressure_scene(const std::string& geometry, double pressure) {
+  return geometry + kMaterial + "effects:\n  - pressure: {pressure: " + std::to_string(pressure) +
+         "}\ntime: {dt: 1, steps: 1}\n";
+}
+
+}  // namespace
+
+// The balloon's sphere (examples/triangle/balloon.yaml), at the origin and far from it, inflated
+// by a displacement: the assembled exact Hessian (Σ_e M_e) is indefinite, the projected one
+// (-mlshell_pressure_psd, each M_e projected) is PSD, and both are the same wherever the body
+// sits (no centre). V(X) is the volume about the origin.
+TEST(TriangleShell, PressureHessianPerEdgeIsPsdWhenProjected) {
+  const Point3 offset(3.0, -2.0, 1.0);
+  const auto obj = write_sphere_obj("offset_sphere", 0.1, 3, offset, false);
+  const Scene far = triangle_scene(
+      "offset_pressure", pressure_scene("geometry: {mesh: {obj: " + obj.string() + "}}\n", 200));
+  const Scene near = triangle_scene(
+      "origin_pressure",
+      pressure_scene("geometry: {mesh: {generator: sphere, radius: 0.1, subdivisions: 3}}\n", 200));
+  TriangleProblem tp(far, PETSC_COMM_SELF), at_origin(near, PETSC_COMM_SELF);
+  std::filesystem::remove(obj);
+  const auto* pressure = dynamic_cast<const PressureTerm*>(tp.problem->terms()[1].get());
+  const auto* pressure0 = dynamic_cast<const PressureTerm*>(at_origin.problem->terms()[1].get());
+  ASSERT_TRUE(pressure && pressure0);
+  const auto& X = tp.disc().points();
+  double volume = 0.0;  // about the origin
+  for (const Triangle& t : tp.disc().mesh().triangles)
+    volume += X[t[0]].dot(X[t[1]].cross(X[t[2]])) / 6.0;
+  EXPECT_GT(pressure->enclosed_volume(), 0.0);
+  EXPECT_NEAR(pressure->enclosed_volume(), volume, 1e-12 * volume);
+  EXPECT_NEAR(pressure->enclosed_volume(), pressure0->enclosed_volume(), 1e-11 * volume);
+
+  // Inflated by 10 % and jiggled by 1 mm.
+  auto u = random_displacement(3 * tp.disc().num_points(), 1e-3, 4);
+  for (int i = 0; i < tp.disc().num_points(); ++i)
+    for (int c = 0; c < 3; ++c) u[3 * i + c] += 0.1 * (X[i][c] - offset[c]);
+  for (const bool project : {false, true}) {
+    tp.problem->terms()[1]->set_hessian_projection(project);
+    at_origin.problem->terms()[1]->set_hessian_projection(project);
+    Mat H = term_hessian(tp, *pressure, u), H0 = term_hessian(at_origin, *pressure0, u);
+    const Eigen::MatrixXd A = dense(H), A0 = dense(H0);
+    MatDestroy(&H);
+    MatDestroy(&H0);
+    ASSERT_GT(A.norm(), 0.0);
+    EXPECT_LE((A - A0).norm(), 1e-12 * A.norm()) << "projected: " << project;
+    EXPECT_EQ((A - A.transpose()).norm(), 0.0);
+    const double lowest =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues()[0];
+    if (project)
+      EXPECT_GE(lowest, -1e-13 * A.norm());
+    else  // −p ∇²V: indefinite
+      EXPECT_LT(lowest, -1e-3 * A.norm());
+  }
+}
+
+// Pressure needs a closed surface oriented outwards: faces turned inwards enclose a negative
+// volume (a positive pressure would deflate the surface), and an open surface encloses none.
+TEST(TriangleShell, PressureRefusesAnInwardOrAnOpenSurface) {
+  const auto obj = write_sphere_obj("inward_sphere", 0.5, 2, Point3(1.0, 0.0, 0.0), true);
+  const Scene inward = triangle_scene(
+      "inward_pressure", pressure_scene("geometry: {mesh: {obj: " + obj.string() + "}}\n", 1000));
+  try {
+    TriangleProblem tp(inward, PETSC_COMM_SELF);
+    ADD_FAILURE() << "an inward surface under pressure was accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    for (const std::string part :
+         {inward.file.string() + ": effects[0].pressure: ", std::string("V(X) = -0.505881 m^3"),
+          std::string("oriented inwards"), std::string("flip the orientation of every face")})
+      EXPECT_NE(what.find(part), std::string::npos) << part << " not in: " << what;
+  }
+  std::filesystem::remove(obj);
+  const Scene open = triangle_scene(
+      "open_pressure",
+      pressure_scene("geometry: {mesh: {generator: rectangle, size: [1, 1], faces: [4, 4]}}\n",
+                     100));
+  try {
+    TriangleProblem tp(open, PETSC_COMM_SELF);
+    ADD_FAILURE() << "an open surface under pressure was accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("effects[0].pressure: pressure needs a closed surface"), std::string::npos)
+        << what;
+  }
 }
 
 TEST(TriangleShell, RestShapesAreStressFree) {
@@ -390,4 +498,27 @@ TEST(TriangleShell, ProjectedNewtonAssemblesAPositiveSemiDefiniteHessian) {
   EXPECT_GE(psd_min, -1e-10 * psd_max);
   EXPECT_FALSE(hessian_projection_default("rmtr"));
   VecDestroy(&u);
+}
+
+// -mlshell_hessian_psd projects every term but the pressure, whose Hessian is projected only
+// with -mlshell_pressure_psd too (off by default).
+TEST(TriangleShell, PressureHessianIsProjectedOnlyWhenAsked) {
+  for (const bool given : {false, true}) {
+    PetscOptionsSetValue(nullptr, "-mlshell_hessian_psd", "true");
+    if (given) PetscOptionsSetValue(nullptr, "-mlshell_pressure_psd", "true");
+    const StepSolverOptions read = StepSolverOptions::from_options(PETSC_COMM_SELF);
+    PetscOptionsClearValue(nullptr, "-mlshell_hessian_psd");
+    PetscOptionsClearValue(nullptr, "-mlshell_pressure_psd");
+    EXPECT_TRUE(read.hessian_psd);
+    EXPECT_EQ(read.pressure_psd, given);
+  }
+  for (const bool psd : {false, true})
+    for (const bool pressure_psd : {false, true}) {
+      StepSolverOptions o;
+      o.hessian_psd = psd;
+      o.pressure_psd = pressure_psd;
+      for (const std::string term : {"elastic", "clamp", "inertia"})
+        EXPECT_EQ(term_hessian_projection(o, term), psd) << term;
+      EXPECT_EQ(term_hessian_projection(o, "pressure"), psd && pressure_psd);
+    }
 }
