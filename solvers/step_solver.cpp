@@ -418,6 +418,13 @@ PetscErrorCode StepSolver::solve(Vec u, SolveReport& report) {
   report.energy = f;
   report.gradient_norm = gnorm;
   if (type() == "rmtr") PetscCall(rmtr_statistics(tao_, &report.rmtr));
+  // A solve that failed may end at an iterate below the floor that no convergence test saw
+  // (RMTR's full-multigrid start moves the iterate before its first V-cycle): one evaluation.
+  if (!report.converged && !std::isnan(floor_.start)) {
+    PetscReal at_end;
+    PetscCall(problem_.objective(u, &at_end, nullptr));
+    if (floor_.below(at_end)) report.energy = at_end;
+  }
   report_floor(report);
   PetscFunctionReturn(0);
 }

@@ -30,9 +30,8 @@ geometry:                    required
     {generator: dome, radius: r, opening_angle: a, rings: n}   apex on +z, rim at a in (0, pi)
     {generator: sphere, radius: r, subdivisions: s}   closed icosphere, s in 0..8
   hierarchy:                 triangle meshes, for -tao_type rmtr: coarser levels by edge collapse
-    {levels: n, ratio: r}    n levels in all (2..12, default 4), each with 1/r (in (1, 64], default
-                             4) of the next finer level's vertices; or {vertices: [n1, n2, ...]}
-    boundary_deviation: d    how far a coarse boundary edge may stray, per length (default 0.05)
+    {levels: n, ratio: r, boundary_deviation: d}   levels 2..12 (4), each 1/r of the finer
+                             one's vertices (r 4), or {vertices: [n1, ...]}; d: 0.05 per length
 material:                    required
   model: clyde-orthotropic   woven cloth, eq. (3.3)-(3.4) of Kopanicakova et al. 2019
     preset: denim            Table 1 of the paper with its coupling limited so that the energy is
