@@ -49,6 +49,9 @@ struct SimulationOptions {
   bool condition = false;
   int condition_steps = 60;
   int limit_csv_samples = 0;  ///< 0: no limit_surface.csv
+  /// -mlshell_audit_intersections: every written frame of a triangle mesh is checked for
+  /// intersecting triangles (exactly, CGAL); one that has any stops the run (exit 5).
+  bool audit_intersections = false;
   /// -mlshell_step_solver, -mlshell_hessian_psd, ...; if empty, the simulation reads them.
   std::optional<StepSolverOptions> solver;
   /// Reads the groups "mlshell: simulation", "mlshell: measuring" and "mlshell: step solver"
@@ -57,8 +60,10 @@ struct SimulationOptions {
   static SimulationOptions from_petsc_options();
 };
 
-/// Exit status of a run: 0 converged, 3 a step's solver did not converge.
+/// Exit status of a run: 0 converged, 3 a step's solver did not converge, 5 a written frame
+/// intersects itself (the intersection audit).
 constexpr int kExitSolverFailed = 3;
+constexpr int kExitIntersection = 5;
 
 struct DecimationHierarchy;
 
@@ -142,6 +147,11 @@ class Simulation {
   static constexpr double kConstraintWarning = 0.05;
   bool all_converged_ = true;
   int steps_done_ = 0;
+  /// The intersection audit (-mlshell_audit_intersections, triangle meshes): the state u_ as
+  /// positions, its intersecting triangle pairs (on every rank) and the message naming them.
+  PetscErrorCode audit_frame(int n, double t, long* pairs, std::string* message);
+  long audited_frames_ = 0, intersecting_pairs_ = 0;
+  std::string audit_message_;  ///< of the last frame audited, if it intersects
   std::optional<SpectrumEstimate> spectrum_;
   PetscLogStage stage_setup_ = 0, stage_solve_ = 0, stage_output_ = 0;
 };

@@ -66,6 +66,7 @@ PetscErrorCode simulation_options(MPI_Comm comm, SimulationOptions* o) {
 /// The group "mlshell: measuring": what the studies measure besides the run itself.
 PetscErrorCode measuring_options(MPI_Comm comm, SimulationOptions* o) {
   PetscBool view = o->hierarchy_view ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool audit = o->audit_intersections ? PETSC_TRUE : PETSC_FALSE;
   PetscBool condition = o->condition ? PETSC_TRUE : PETSC_FALSE;
   PetscInt steps = o->condition_steps, samples = o->limit_csv_samples;
   PetscBool has_dir = PETSC_FALSE, has_samples = PETSC_FALSE;
@@ -94,7 +95,13 @@ PetscErrorCode measuring_options(MPI_Comm comm, SimulationOptions* o) {
                                "cage and limit surface; triangle: rest mesh and its prolongation "
                                "to the finest level)",
                                "", dir, dir, sizeof dir, &has_dir));
+  PetscCall(PetscOptionsBool("-mlshell_audit_intersections",
+                             "check every written frame of a triangle mesh (and the input) for "
+                             "intersecting triangles, exactly (CGAL); a frame with any stops the "
+                             "run (exit 5)",
+                             "", audit, &audit, nullptr));
   PetscOptionsEnd();
+  o->audit_intersections = audit;
   o->condition = condition;
   if (steps < 2 || steps > 2000)
     throw SceneError("-mlshell_condition_steps: must be in 2..2000; got '" +
@@ -482,8 +489,19 @@ PetscErrorCode Simulation::run(int* status) {
         if (cols[j] == cols[i]) cols[j] += "_" + std::to_string(j);
     output_->csv = std::make_unique<CsvTable>(output_->dir / "steps.csv", cols);
   }
+  if (options_.audit_intersections) {  // the input first: an intersecting one is bad input
+    long pairs;
+    std::string message;
+    PetscCall(audit_frame(first_step_, first_step_ * scene_.time.dt, &pairs, &message));
+    if (pairs > 0)
+      throw SceneError(scene_.file.string() + ": geometry.mesh: the " +
+                       (first_step_ == 0 ? std::string("input surface")
+                                         : "checkpoint's state") +
+                       " intersects itself: " + message);
+  }
   if (first_step_ == 0) PetscCall(write_frame(0, 0.0, true, true));
   SolveReport report;
+  bool intersected = false;
   for (int n = first_step_ + 1; n <= scene_.time.steps; ++n) {
     const double t0 = MPI_Wtime();
     PetscCall(VecCopy(u_, u_last_));
@@ -530,6 +548,12 @@ PetscErrorCode Simulation::run(int* status) {
       PetscCall(write_frame(n, n * scene_.time.dt, n == scene_.time.steps || !report.converged,
                             report.converged));
     }
+    if (!audit_message_.empty()) {  // write_frame's audit found intersecting triangles
+      PetscCall(PetscPrintf(comm_, "mlshell: frame %d (t = %g s) intersects itself: %s; stopping\n",
+                            n, n * scene_.time.dt, audit_message_.c_str()));
+      intersected = true;
+      break;
+    }
     if (!report.converged) {
       all_converged_ = false;
       const std::string remedies =
@@ -546,7 +570,10 @@ PetscErrorCode Simulation::run(int* status) {
   {
     const LogStageScope output(stage_output_);
     if (options_.limit_csv_samples > 0) PetscCall(write_limit_csv());
-    PetscCall(write_summary(all_converged_ ? "complete" : "solver_failed", &report));
+    PetscCall(write_summary(intersected      ? "intersection"
+                            : all_converged_ ? "complete"
+                                             : "solver_failed",
+                            &report));
   }
   PetscCall(PetscPrintf(
       comm_, "mlshell: results in %s (summary.json%s%s%s)\n", fs::absolute(output_->dir).c_str(),
@@ -556,7 +583,7 @@ PetscErrorCode Simulation::run(int* status) {
               scene_.output.formats.end()
           ? ", frame_*.obj"
           : ""));
-  *status = all_converged_ ? 0 : kExitSolverFailed;
+  *status = intersected ? kExitIntersection : all_converged_ ? 0 : kExitSolverFailed;
   PetscFunctionReturn(0);
 }
 

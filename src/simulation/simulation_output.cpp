@@ -16,6 +16,9 @@
 #include "mlshell/effects.hpp"
 #include "mlshell/output_files.hpp"
 #include "mlshell/simulation.hpp"
+
+#include "mlshell/contact/audit/intersection_audit.hpp"
+#include "mlshell/triangle/triangle_discretization.hpp"
 #include "mlshell/unused_options.hpp"
 
 namespace mlshell {
@@ -45,6 +48,10 @@ std::string petsc_options_in_effect() {
 PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converged) {
   PetscFunctionBeginUser;
   const bool frame_due = force || n % scene_.output.every == 0;
+  if (frame_due && options_.audit_intersections && n > first_step_) {  // run() audits the start
+    long pairs;
+    PetscCall(audit_frame(n, t, &pairs, &audit_message_));
+  }
   const auto& formats = scene_.output.formats;
   auto has = [&](const char* f) {
     return std::find(formats.begin(), formats.end(), f) != formats.end();
@@ -116,6 +123,32 @@ PetscErrorCode Simulation::write_frame_files(
     throw;
   }
   destroy();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::audit_frame(int n, double t, long* pairs, std::string* message) {
+  PetscFunctionBeginUser;
+  const auto* triangles = dynamic_cast<const TriangleDiscretization*>(disc_);
+  *pairs = 0;
+  message->clear();
+  if (!triangles) PetscFunctionReturn(0);  // subdivision surfaces: not audited (yet)
+  std::vector<double> u;
+  PetscCall(layout_->gather_natural(u_, u));
+  std::array<long, 3> found{0, -1, -1};  // pairs, and the first pair's triangles
+  if (rank_ == 0) {
+    std::vector<Point3> x = triangles->mesh().points;
+    for (size_t i = 0; i < x.size(); ++i) x[i] += Point3(u[3 * i], u[3 * i + 1], u[3 * i + 2]);
+    const IntersectionReport r = self_intersections(x, triangles->mesh().triangles, 1);
+    found = {r.pairs, r.pairs ? r.examples[0][0] : -1, r.pairs ? r.examples[0][1] : -1};
+  }
+  PetscCallMPI(MPI_Bcast(found.data(), 3, MPI_LONG, 0, comm_));
+  ++audited_frames_;
+  intersecting_pairs_ += found[0];
+  *pairs = found[0];
+  if (found[0] > 0)
+    *message = std::to_string(found[0]) + " pair(s) of triangles intersect (the first: " +
+               std::to_string(found[1]) + " and " + std::to_string(found[2]) + ", at step " +
+               std::to_string(n) + ", t = " + std::to_string(t) + " s)";
   PetscFunctionReturn(0);
 }
 
@@ -288,6 +321,11 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"unused_options", Json(unused)},
         {"material", material},
         {"constraints", Json(constraints)},
+        {"intersection_audit",
+         options_.audit_intersections
+             ? Json(Json::Object{{"frames", Json(audited_frames_)},
+                                 {"intersecting_pairs", Json(intersecting_pairs_)}})
+             : Json(nullptr)},
         {"wall_time", Json(MPI_Wtime() - wall_start_)},
         {"memory", Json(Json::Object{{"peak_rss_mib_largest_rank", Json(peak_largest)},
                                      {"peak_rss_mib_all_ranks", Json(peak_sum)},

@@ -477,6 +477,14 @@ MUTATIONS = [
      "  if (g) PetscCall(direct_.project(fine_g_, g));",
      "the proxy energy's gradient takes the fine gradient at the surviving vertices instead of "
      "J_P(x)ᵀ∇Ψ", ()),
+    ("audit-self-pairs-not-counted", "src/contact/audit/intersection_audit.cpp",
+     "  for (const auto& [a, b] : intersecting(mesh)) {\n    ++report.pairs;",
+     "  for (const auto& [a, b] : intersecting(mesh)) {",
+     "the intersection audit reports no intersecting pairs within a surface", ()),
+    ("audit-input-not-refused", "src/simulation/simulation.cpp",
+     "    if (pairs > 0)\n      throw SceneError(scene_.file.string() + \": geometry.mesh: the \" +",
+     "    if (false)\n      throw SceneError(scene_.file.string() + \": geometry.mesh: the \" +",
+     "an input surface that intersects itself is simulated", ()),
     ("collapse-chart-fold-unchecked", "mesh/decimation/collapse_chart.cpp",
      "  bool ok = place_kept_lscm() && after_valid();", "  bool ok = place_kept_lscm();",
      "a collapse whose LSCM after chart folds keeps it (points snapped across the fold, no "
