@@ -326,7 +326,8 @@ void Simulation::setup_triangles() {
   {
     const LogEventScope event("Setup:problems");
     multilevel_ = std::make_unique<MultilevelProblem>(*levels, scene_.time.dt, [&](int l) {
-      auto problem = build_triangle_problem(scene_, t.discretization(l), t.layout(l), frame_);
+      auto problem = build_triangle_problem(scene_, t.discretization(l), t.layout(l), frame_,
+                                            t.discretization(t.finest()).mesh_size());
       if (l < t.finest()) problem->extend_pattern(t.galerkin_pairs(l));
       return problem;
     });

@@ -93,7 +93,7 @@ TriangleMesh build_triangle_mesh(const TriangleMeshSpec& s) {
 std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
                                                      const TriangleDiscretization& disc,
                                                      const ParallelLayout& layout,
-                                                     const CageFrame& frame) {
+                                                     const CageFrame& frame, double penalty_h) {
   const auto& material = std::get<TriangleMaterial>(scene.material.model);
   TriangleShellParameters params;
   params.membrane = material.neo_hookean ? TriangleShellParameters::Membrane::kNeoHookean
@@ -110,7 +110,7 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
     problem->add_term(std::make_unique<TriangleInertiaTerm>(disc, layout, rho,
                                                             scene.time.proximal_step, "proximal"));
   const double ramp_time = scene.time.dt * scene.time.steps;
-  const double h = disc.mesh_size();
+  const double h = penalty_h > 0.0 ? penalty_h : disc.mesh_size();
   Point3 lo = Point3::Constant(INFINITY), hi = Point3::Constant(-INFINITY);
   for (const Point3& X : disc.points()) lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
   const PenaltyScale scale{PenaltyScale::membrane_stiffness_of(scene.material),
