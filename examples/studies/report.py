@@ -708,7 +708,9 @@ class Report:
         for scene in dict.fromkeys(r["scene"] for r in rows):
             mine = [r for r in rows if r["scene"] == scene]
             body = []
-            for resolution in sorted({r["resolution"] for r in mine}, key=number):
+            # Coarse to fine (by dofs: an edge length falls as the resolution grows).
+            dofs_of = {r["resolution"]: number(r["dofs"], 0.0) for r in mine}
+            for resolution in sorted(dofs_of, key=dofs_of.get):
                 group = [r for r in mine if r["resolution"] == resolution]
                 dofs = next((r["dofs"] for r in group if r["dofs"]), "")
                 levels = max((int(number(r["levels"], 1)) for r in group), default=1)

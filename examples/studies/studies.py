@@ -107,6 +107,7 @@ def main(argv):
                        (["--only", *a.only] if a.only else []) +
                        (["--scenes", *a.scenes] if a.scenes else []) +
                        (["--solvers", *a.solvers] if a.solvers else []) +
+                       ([f"--ranks {a.ranks}"] if a.ranks != 2 else []) +
                        ([f"--timeout {a.timeout:g}"] if a.timeout_given else []) +
                        ([f"--max-refine {a.max_refine}"] if a.max_refine < 8 else []) +
                        ([f"--max-dofs {a.max_dofs}"] if a.max_dofs is not None else []))

@@ -88,6 +88,13 @@ def rmtr_fields(result):
             "coarse_rejected": sum(int(l["coarse_rejected"]) for l in levels)}
 
 
+def energy(result):
+    """The final total energy to 12 digits (a string: the CSV writer keeps 6 of a float's),
+    enough to tell round-off from another minimiser."""
+    total = ((result["summary"] or {}).get("energy") or {}).get("total")
+    return "" if total is None else f"{total:.12g}"
+
+
 def run(ctx):
     rows = []
     for scene in ctx.scenes(QUICK_SCENES, SCENES):
@@ -108,10 +115,8 @@ def run(ctx):
                             steps=steps)
                 if r["timed_out"]:
                     given_up.add(solver)
-                s = r["summary"] or {}
                 row = {**solver_fields(r), **rmtr_fields(r), "solver": solver,
-                       "resolution": resolution, "steps": steps,
-                       "energy": (s.get("energy") or {}).get("total", "") if s else ""}
+                       "resolution": resolution, "steps": steps, "energy": energy(r)}
                 if row["dofs"] == "":
                     row.update(levels=levels or 1, energy="")
                 rows.append(row)
