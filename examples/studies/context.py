@@ -6,11 +6,13 @@ from runner import PROVENANCE, SOURCE, Runner
 
 
 class Context:
-    def __init__(self, runner: Runner, mode: str, out: Path, scenes=None, solvers=None):
+    def __init__(self, runner: Runner, mode: str, out: Path, scenes=None, solvers=None,
+                 max_dofs=None):
         self.runner = runner
         self.selected_scenes = scenes  # None: every scene a study defines
         self.selected_solvers = solvers  # None: every solver a study compares
         self.mode = mode  # "quick" or "full"
+        self.max_dofs = max_dofs  # None: every resolution (studies whose scenes have no refine)
         self.out = Path(out)
         self.source = SOURCE
         self._memo = {}

@@ -201,3 +201,34 @@ def scaling(rows, out, scene="trampoline"):
         ax.legend(fontsize=7)
     axes[0].set_title(f"{scene}, one step dt = 1 (converged runs)")
     return _save(fig, out, "scaling.png" if scene == "trampoline" else f"scaling_{scene}.png")
+
+
+def triangle(rows, out):
+    """RMTR on triangle hierarchies: per scene (columns), wall time against dofs for every
+    solver (top) and V-cycles / Newton iterations against dofs (bottom; RMTR solid, the
+    single-level solvers dashed). Converged runs only."""
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    solvers = list(dict.fromkeys(r["solver"] for r in rows))
+    if not any(r["converged"] == "1" for r in rows):
+        return None
+    fig, axes = plt.subplots(2, len(scenes), figsize=(4.6 * len(scenes), 7.4), squeeze=False)
+    for j, scene in enumerate(scenes):
+        top, bottom = axes[0][j], axes[1][j]
+        for k, solver in enumerate(solvers):
+            ok = sorted((r for r in rows if r["scene"] == scene and r["solver"] == solver
+                         and r["converged"] == "1"), key=lambda r: number(r["dofs"]))
+            if not ok:
+                continue
+            style = MARKERS[k % len(MARKERS)] + ("-" if solver.startswith("rmtr") else "--")
+            dofs = [number(r["dofs"]) for r in ok]
+            top.loglog(dofs, [number(r["wall_time"]) for r in ok], style, color=f"C{k}",
+                       label=solver)
+            bottom.loglog(dofs, [number(r["iterations"]) for r in ok], style, color=f"C{k}",
+                          label=solver)
+        steps = next((r["steps"] for r in rows if r["scene"] == scene), "?")
+        top.set(xlabel="dofs", ylabel="wall time [s]",
+                title=f"{scene}, first {steps} step(s)")
+        bottom.set(xlabel="dofs", ylabel="V-cycles (RMTR) / iterations, summed over steps")
+        top.legend(fontsize=7)
+        bottom.legend(fontsize=7)
+    return _save(fig, out, "triangle.png")

@@ -14,6 +14,7 @@ import paper
 import plots
 import study_iterations
 import study_scaling
+import study_triangle
 from context import PROVENANCE, number, read_csv
 from solvers import DEFAULT_SOLVER, describe, scene_solver
 
@@ -25,8 +26,15 @@ GOAL_SCALING = ((51483, 3.0), (201243, 5.0))
 GOAL_SCALING_CYCLES = 20
 GOAL_SCALING_TABLE4 = 5  # elsewhere: at most 1/5 of the paper's Table 4 at as many levels
 SINGLE_LEVEL = ("tr", "bnls-mumps")
+# Issue 48: RMTR on triangle hierarchies against the best single-level solver, at about these
+# dofs (a resolution within TRIANGLE_DOFS_SPREAD of them counts), and its V-cycles: those at
+# the finest resolution at most TRIANGLE_CYCLE_GROWTH times those at the coarsest ("do not
+# grow", with room for the path a post-buckled sheet takes).
+GOAL_TRIANGLE = ((50000, 3.0), (200000, 5.0))
+TRIANGLE_DOFS_SPREAD = 1.6
+TRIANGLE_CYCLE_GROWTH = 1.5
 # The headline's groups, in the order they are shown (Report.headline_group).
-HEADLINE_ORDER = ("cycles", "single-level", "peers", "ranks")
+HEADLINE_ORDER = ("cycles", "single-level", "triangle", "peers", "ranks")
 
 
 def table(header, rows):
@@ -671,6 +679,121 @@ class Report:
                     self.goals.append((f"{name} {where}", "no converged run to compare"
                                        if best else "no single-level solver converged", False))
 
+    # --- triangle hierarchies (issue 48) -------------------------------------------------------
+    def triangle(self):
+        rows = self.csv("triangle")
+        if rows is None:
+            return
+        order = list(study_triangle.SOLVERS)
+        solvers = sorted(dict.fromkeys(r["solver"] for r in rows),
+                         key=lambda s: order.index(s) if s in order else len(order))
+        self.add("## RMTR on triangle hierarchies\n\n" + measures(
+                 "the V-cycles, wall time and peak memory of RMTR on paper 2's decimation "
+                 "hierarchies of the triangle-mesh scenes, with each of its three coarse models, "
+                 "as the resolution grows", "the single-level solvers `pnewton` (projected "
+                 "Newton + MUMPS, the scenes' own) and `tr` (single-level TR + MUMPS) on the "
+                 "same load steps") +
+                 "The first load steps of each scene (`steps`; the drape has one), "
+                 "\\|g\\| < 1e-7 on every step. Each cell: V-cycles (RMTR) or iterations, "
+                 "summed over the steps · wall time of the whole run (setup, hierarchy, solve, "
+                 "output) · peak resident memory of the largest rank. `rmtr-patch-dogleg`: "
+                 "mlshell's default RMTR (`-tao_type rmtr`), Galerkin coarse models J_Pᵀ H J_P; "
+                 "`rmtr-own`: first-order coarse models of each coarse mesh's own energy; "
+                 "`rmtr-proxy`: first-order models of paper 2's proxy Ψ(P^l(x_l)). RMTR runs on "
+                 f"`hierarchy: {{levels: L, ratio: {study_triangle.RATIO}}}` with the fewest "
+                 f"levels whose coarsest has at most {study_triangle.COARSEST_VERTICES} "
+                 "vertices; the single-level solvers run without the hierarchy. *Energy "
+                 "spread*: the largest relative difference of the final total energies of the "
+                 "converged runs (the same minimiser: round-off).\n")
+        for scene in dict.fromkeys(r["scene"] for r in rows):
+            mine = [r for r in rows if r["scene"] == scene]
+            body = []
+            # Coarse to fine (by dofs: an edge length falls as the resolution grows).
+            dofs_of = {r["resolution"]: number(r["dofs"], 0.0) for r in mine}
+            for resolution in sorted(dofs_of, key=dofs_of.get):
+                group = [r for r in mine if r["resolution"] == resolution]
+                dofs = next((r["dofs"] for r in group if r["dofs"]), "")
+                levels = max((int(number(r["levels"], 1)) for r in group), default=1)
+                line = [resolution, count(dofs), levels]
+                for solver in solvers:
+                    r = find(group, solver=solver)
+                    line.append("not run" if r is None else outcome(r) if r["converged"] != "1"
+                                else f"{outcome(r)} · {seconds(r['wall_time'])} s · "
+                                     f"{count(r['peak_rss_mib'])} MiB")
+                energies = [number(r["energy"]) for r in group
+                            if r["converged"] == "1" and number(r["energy"]) is not None]
+                scale = max((abs(e) for e in energies), default=0.0)
+                line.append(f"{(max(energies) - min(energies)) / scale:.1e}"
+                            if len(energies) > 1 and scale else "")
+                body.append(line)
+                self.triangle_headline(scene, dofs, group)
+            steps = next((r["steps"] for r in mine if r["steps"]), "?")
+            self.add(f"### {scene}: {study_triangle.MESH_KEY[scene]}, first {steps} "
+                     "step(s)\n\n" + table([study_triangle.MESH_KEY[scene], "dofs", "levels"] +
+                                            solvers + ["energy spread"], body))
+            self.triangle_goals(scene, mine)
+        self.image(plots.triangle(rows, self.out))
+
+    @staticmethod
+    def fastest(rows, solvers):
+        ok = [r for r in rows if r["solver"] in solvers and r["converged"] == "1"
+              and number(r["wall_time"])]
+        return min(ok, key=lambda r: number(r["wall_time"]), default=None)
+
+    def triangle_headline(self, scene, dofs, group):
+        """One headline row: the fastest RMTR coarse model against the fastest single-level
+        solver at one resolution."""
+        rm = self.fastest(group, study_triangle.RMTR)
+        single = self.fastest(group, study_triangle.SINGLE_LEVEL)
+        if not rm or not single:
+            return
+        self.headline_group(
+            "triangle", "Time: RMTR on triangle hierarchies against the fastest single-level "
+            "solver",
+            "Compares the whole-run wall time of the fastest converged RMTR configuration on a "
+            "triangle scene's decimation hierarchy (any of the three coarse models) with the "
+            "fastest converged single-level solver (`pnewton`, `tr`; both factorise with MUMPS) "
+            "on the same load steps and tolerance (see *RMTR on triangle hierarchies*). Ratio: "
+            "single-level time / RMTR's (above 1: RMTR is faster).",
+            ["scene", "dofs", "RMTR", "V-cycles", "single-level", "iterations",
+             "time, single-level / RMTR"]).append(
+            [scene, count(dofs), rm["solver"], count(rm["iterations"]), single["solver"],
+             count(single["iterations"]),
+             f"{number(single['wall_time']) / number(rm['wall_time']):.2f}×"])
+
+    def triangle_goals(self, scene, rows):
+        """Issue 48's goals for mlshell's default RMTR on one scene: V-cycles that do not grow,
+        and its time against the fastest single-level solver at about 50k and 200k dofs."""
+        own = DEFAULT_SOLVER
+        runs = sorted((r for r in rows if r["solver"] == own and r["dofs"]),
+                      key=lambda r: number(r["dofs"]))
+        if len(runs) > 1:
+            ok = all(r["converged"] == "1" for r in runs) and number(runs[-1]["iterations"]) \
+                <= TRIANGLE_CYCLE_GROWTH * number(runs[0]["iterations"])
+            self.goals.append((f"{own}: V-cycles do not grow with resolution ({scene}; at most "
+                               f"{TRIANGLE_CYCLE_GROWTH:g}× from the coarsest to the finest)",
+                               ", ".join(f"{outcome(r)} ({count(r['dofs'])})" for r in runs),
+                               ok))
+        for dofs, goal in GOAL_TRIANGLE:
+            name = (f"{own} ≥ {goal:g}× faster than the best single-level solver at about "
+                    f"{dofs:,} dofs ({scene})")
+            near = [r for r in rows if number(r["dofs"]) and
+                    dofs / TRIANGLE_DOFS_SPREAD <= number(r["dofs"]) <= dofs * TRIANGLE_DOFS_SPREAD]
+            finest = max((number(r["dofs"]) for r in rows if number(r["dofs"])), default=0)
+            if not near:
+                self.goals.append((name, f"not measured in this run (finest: {finest:,.0f} "
+                                   "dofs)", None))
+                continue
+            r = find(near, solver=own)
+            single = self.fastest(near, study_triangle.SINGLE_LEVEL)
+            if not r or r["converged"] != "1" or not single:
+                self.goals.append((name, f"{own}: {outcome(r)}" if not single else
+                                   "no single-level solver converged", False))
+                continue
+            ratio = number(single["wall_time"]) / number(r["wall_time"])
+            self.goals.append((name, against(ratio, goal) + f" against {single['solver']} "
+                               f"({count(r['dofs'])} dofs)", ratio >= goal))
+
     def reproduce(self):
         """The commands that filled this folder (meta.json), with their dates and builds."""
         runs = self.meta.get("runs", [])
@@ -728,9 +851,12 @@ class Report:
 
     def write(self):
         for study in (self.iterations, self.work, self.projection, self.condition,
-                      self.timestep, self.accuracy, self.peers, self.parallel, self.scaling):
+                      self.timestep, self.accuracy, self.peers, self.parallel, self.scaling,
+                      self.triangle):
             study()
-        goals = [[g, v, "met" if ok else "**not met**"] for g, v, ok in self.goals]
+        # ok None: a goal this folder has no measurement for (neither met nor missed).
+        goals = [[g, v, "" if ok is None else "met" if ok else "**not met**"]
+                 for g, v, ok in self.goals]
         if not any("PETSc" in g for g, _, _ in self.goals):
             goals.append([f"RMTR ≥ {GOAL_SPEEDUP_PEERS:g}× faster than the best PETSc solver at "
                           f"{GOAL_DOFS:,} dofs", "not measured in this run", ""])

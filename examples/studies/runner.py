@@ -1,7 +1,8 @@
 """Runs one mlshell solve for a study and returns what it measured.
 
-Every run is one implicit-Euler step from the scene's initial state, in its own output folder
-(OUT/runs/<study>/<tag>/). The result is summary.json, plus the -log_view stage and event times
+Every run is one implicit-Euler step from the scene's initial state (or `steps` of the scene's
+own stepping, for the triangle scenes, whose resolution is their mesh spec and not a refine), in
+its own output folder (OUT/runs/<study>/<tag>/). The result is summary.json, plus the -log_view stage and event times
 when asked for. A run that exceeds its time limit is killed and reported as such, never dropped.
 """
 import json
@@ -85,17 +86,19 @@ class Runner:
         return min(MAX_REFINE.get(scene, 8), self.max_refine)
 
     def run(self, study, tag, scene, refine, options=(), dt=1.0, ranks=None, scene_text=None,
-            log_view=False):
-        """One step of `scene` at `refine` with the given PETSc options; returns a dict."""
+            log_view=False, steps=1):
+        """`steps` steps (one by default) of `scene` at `refine` with the given PETSc options;
+        returns a dict. refine None: the scene's own resolution (triangle meshes, whose
+        resolution `scene_text` sets), no -mlshell_refine."""
         return self.run_copies(study, tag, scene, refine, options, dt, ranks, scene_text,
-                               log_view, copies=1)[0]
+                               log_view, copies=1, steps=steps)[0]
 
     def run_copies(self, study, tag, scene, refine, options=(), dt=1.0, ranks=None,
-                   scene_text=None, log_view=False, copies=2):
+                   scene_text=None, log_view=False, copies=2, steps=1):
         """`copies` identical runs started together (folders <tag>, <tag>-copy2, ...): what
         sharing the machine's memory bandwidth and caches costs one run; returns their dicts."""
         ranks = ranks or self.ranks
-        if refine > self.finest(scene):
+        if refine is not None and refine > self.finest(scene):
             return [{"study": study, "tag": tag, "scene": scene, "refine": refine,
                      "ranks": ranks, "dt": dt, "exit_code": None, "timed_out": False,
                      "elapsed": 0.0, "folder": None, "summary": None, "skipped": True}
@@ -104,24 +107,26 @@ class Runner:
         # Open MPI binds a 1-rank job to core 0: copies must be free to run on the other cores.
         binding = ["--bind-to", "none"] if copies > 1 else []
         launched = [self._launch(study, t, scene, refine, options, dt, ranks, scene_text,
-                                 log_view, binding) for t in tags]
+                                 log_view, binding, steps) for t in tags]
         return [self._collect(*job) for job in launched]
 
     def _launch(self, study, tag, scene, refine, options, dt, ranks, scene_text, log_view,
-                binding):
+                binding, steps=1):
         folder = self.out / "runs" / study / tag
         folder.mkdir(parents=True, exist_ok=True)
         for stale in ("summary.json", "log_view.txt", "limit_surface.csv"):
             (folder / stale).unlink(missing_ok=True)
-        scene_file = self.scene_path(scene)
-        if scene_text is not None:
+        if scene_text is None:
+            scene_file = self.scene_path(scene)
+        else:
             scene_file = folder / f"{scene}.yaml"
             # The copy lies in a run folder: the scene's solver file by its path in the sources
             # (it must exist to parse, although every run ignores it).
             scene_file.write_text(scene_text.replace("options_file: ../", f"options_file: {SOURCE}/"))
+        resolution = [] if refine is None else ["-mlshell_refine", str(refine)]
         command = ["mpiexec", "--oversubscribe", *binding, "-n", str(ranks), str(self.mlshell),
-                   str(scene_file), "-mlshell_steps", "1", "-mlshell_dt", repr(dt),
-                   "-mlshell_refine", str(refine), "-mlshell_output_dir", str(folder),
+                   str(scene_file), "-mlshell_steps", str(steps), "-mlshell_dt", repr(dt),
+                   *resolution, "-mlshell_output_dir", str(folder),
                    "-mlshell_quiet", "-mlshell_scene_solver", "false", *map(str, options)]
         if log_view:
             command += ["-log_view", f":{folder / 'log_view.txt'}"]

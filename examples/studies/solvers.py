@@ -62,6 +62,20 @@ SOLVERS = {
                        + _HYPRE),
     "snes-mumps": ("SNES newtonls (bt line search), MUMPS LU",
                    ["-mlshell_step_solver", "snes", "-snes_type", "newtonls"]),
+    # Triangle-mesh shells (paper 2): its single-level default, and RMTR on the decimation
+    # hierarchy with first-order coarse models of each coarse mesh's own energy or of paper 2's
+    # proxy energy Ψ(P^l(x_l)) (eq. 2) in place of the Galerkin models of mlshell's default.
+    "pnewton": ("projected Newton (PSD-projected element Hessians, MUMPS LU, Armijo line "
+                "search; the triangle scenes' own solver, paper 2 §4.5)",
+                ["-tao_type", "pnewton", "-mlshell_hessian_psd", "1"]),
+    "rmtr-own": ("RMTR as rmtr-patch-dogleg, first-order coarse models of each coarse mesh's "
+                 "own energy", ["-options_file", "@petsc-options/rmtr-patch-dogleg.yaml",
+                                "-tao_rmtr_coarse_model", "first_order",
+                                "-mlshell_coarse_energy", "own"]),
+    "rmtr-proxy": ("RMTR as rmtr-patch-dogleg, first-order coarse models of paper 2's proxy "
+                   "energy Ψ(P^l(x_l)) (the finest energy at the direct prolongation)",
+                   ["-options_file", "@petsc-options/rmtr-patch-dogleg.yaml",
+                    "-tao_rmtr_coarse_model", "first_order", "-mlshell_coarse_energy", "proxy"]),
     "dampednewton": ("damped Newton, alpha = 0.3", ["-tao_type", "dampednewton"]),
     "linearized": ("linearized equation (one Newton step)", ["-tao_type", "linearized"]),
 }

@@ -27,13 +27,14 @@ EXPECTED_ROWS = {
     "peers": 10,            # rmtr.yaml, the scene's own configuration + 8 PETSc ones
     "parallel": 6,          # rmtr, rmtr-patch and rmtr-patch-dogleg on 1 and 2 ranks
     "scaling": 17,          # refine 1: 9 solvers; refine 2: 8 (not the paper's ST-CG)
+    "triangle": 4,          # plate buckling, shell indent x (projected Newton, RMTR)
 }
 # Rows quick mode expects to time out or not to run, as (study, scene, reason prefix); none today.
 # Any other row whose run crashed, timed out or was skipped fails the test.
 EXPECTED_FAILED_RUNS = set()
 FAILED_RUN = ("exit ", "timeout", "not run")
 PLOTS = ("iterations.png", "condition.png", "timestep.png", "accuracy_trampoline.png",
-         "peers.png", "parallel.png", "scaling.png")
+         "peers.png", "parallel.png", "scaling.png", "triangle.png")
 
 
 def fail(message):
@@ -98,6 +99,17 @@ def check(out, build):
     for r in read_csv(out / "scaling.csv"):
         if r["converged"] == "1" and not number(r["peak_rss_mib"], 0.0) > 0:
             fail(f"scaling.csv: {r['solver']} refine {r['refine']} has no peak memory")
+    for r in read_csv(out / "triangle.csv"):
+        if not (r["converged"] == "1" and number(r["energy"]) is not None and
+                number(r["peak_rss_mib"], 0.0) > 0):
+            fail(f"triangle.csv: {r['scene']} {r['solver']} did not converge with an energy and "
+                 f"a peak memory: {r['reason']}")
+    energies = {}
+    for r in read_csv(out / "triangle.csv"):
+        energies.setdefault(r["scene"], []).append(number(r["energy"]))
+    for scene, e in energies.items():  # projected Newton and RMTR reach the same minimiser
+        if max(e) - min(e) > 1e-8 * max(abs(x) for x in e):
+            fail(f"triangle.csv: {scene}'s solvers end at different energies {e}")
     for plot in PLOTS:
         data = (out / plot).read_bytes() if (out / plot).is_file() else b""
         if not data.startswith(b"\x89PNG"):
@@ -113,7 +125,8 @@ def report_problems(report):
     problems = [f"no section '{heading}'" for heading in (
         "## Headline", "## Performance goals", "Table 3", "Table 4", "Tables 6–7", "Table 8",
         "Figure 9", "Figure 10", "## Accuracy vs time", "## RMTR vs PETSc", "## Parallel",
-        "## RMTR at scale", "## Reproduce", "## Provenance") if heading not in report]
+        "## RMTR at scale", "## RMTR on triangle hierarchies", "## Reproduce",
+        "## Provenance") if heading not in report]
     problems += [f"does not show {plot}" for plot in PLOTS if f"]({plot})" not in report]
     headings = [line[3:] for line in report.splitlines() if line.startswith("## ")]
     if headings[:2] != ["Headline", "Performance goals"] or \

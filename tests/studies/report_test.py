@@ -253,6 +253,38 @@ class ReportFromKnownRows(unittest.TestCase):
         self.assertIn("| 8, 25 | **not met** |", text)  # 25 > 20 V-cycles at 201,243 dofs
         self.assertIn("](scaling.png)", text)
 
+    def test_triangle_table_headline_and_goals(self):
+        def tri(solver, res, dofs, its, wall, energy, converged=1, levels=1):
+            return run_row("shell_indent", dofs, its, converged, solver=solver, resolution=res,
+                           steps=2, levels=levels, wall_time=wall, peak_rss_mib=100,
+                           energy=energy)
+        write(self.out, "triangle", [
+            tri("pnewton", 16, 2325, 12, 6.0, 0.047),
+            tri("tr", 16, 2325, 40, 9.0, 0.047),
+            tri("rmtr-patch-dogleg", 16, 2325, 3, 5.0, 0.047, levels=2),
+            tri("rmtr-own", 16, 2325, 30, 20.0, 0.047, 0, levels=2),
+            tri("pnewton", 64, 36000, 20, 60.0, 0.05),
+            tri("rmtr-patch-dogleg", 64, 36000, 5, 15.0, 0.05 * (1 + 2e-12), levels=4),
+            tri("rmtr-proxy", 64, 36000, 6, 12.0, 0.05, levels=4)])
+        text = self.build()
+        self.assertIn("| 16 | 2,325 | 2 | 12 · 6 s · 100 MiB | 40 · 9 s · 100 MiB | "
+                      "3 · 5 s · 100 MiB | 30 (stopped: tr_reduction, \\|g\\| 5.0e-01) |",
+                      text)
+        self.assertIn("| 2.0e-12 |", text)  # the converged runs' energies agree
+        head = section(text, "Headline")
+        # The fastest RMTR coarse model against the fastest single-level solver.
+        self.assertIn("| shell_indent | 36,000 | rmtr-proxy | 6 | pnewton | 20 | 5.00× |", head)
+        self.assertIn("| shell_indent | 2,325 | rmtr-patch-dogleg | 3 | pnewton | 12 | 1.20× |",
+                      head)
+        # The goals are the default's: 60 / 15 s at 36,000 dofs (within 1.6× of 50,000).
+        self.assertRegex(text, r"about 50,000 dofs \(shell_indent\) \| 4\.00× against pnewton"
+                               r" \(36,000 dofs\) \| met \|")
+        self.assertRegex(text, r"about 200,000 dofs \(shell_indent\) \| not measured in this "
+                               r"run \(finest: 36,000 dofs\) \|  \|")
+        self.assertIn("| 3 (2,325), 5 (36,000) | **not met** |", text)  # 5 > 1.5 × 3
+        self.assertIn("](triangle.png)", text)
+        self.assertTrue((self.out / "triangle.png").is_file())
+
     def test_scaling_of_each_scene_in_its_own_table(self):
         # A free-hanging scene's rows get their own table and plot, and stay out of the
         # trampoline's goals (its faster single-level run is no trampoline peer).
