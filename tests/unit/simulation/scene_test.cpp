@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 
@@ -374,6 +375,37 @@ TEST(SceneParse, EffectsMayBeEmptyOrAbsent) {
   EXPECT_TRUE(parse_scene(dir.write("null.yaml", text.str())).effects.empty());
 }
 
+TEST(SceneParse, MotionsRotateTranslateOrBoth) {
+  ScratchDir dir;
+  SceneText text;
+  text.effects =
+      "effects:\n"
+      "  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], center: [0, 0.5, 0], "
+      "angle: 1.5707963267948966}, over: [0, 2]}}\n"
+      "  - dirichlet:\n      where: boundary(right)\n      motion:\n        translate: [0, 0, 0.1]\n"
+      "        rotate: {axis: [0, 0, 2], center: [1, 0, 0], angle: -0.5}\n        over: [1, 3]\n"
+      "  - dirichlet: {where: boundary(top), motion: {translate: [0.1, 0, 0], over: [0, 1]}}\n";
+  const Scene scene = parse_scene(dir.write("motions.yaml", text.str()));
+  ASSERT_EQ(scene.effects.size(), 3u);
+  // rotate alone: no translation.
+  const auto& turned = *as<ClampEffect>(scene.effects[0]).motion;
+  expect_vec3(turned.translate, {0, 0, 0});
+  ASSERT_TRUE(turned.rotate);
+  expect_vec3(turned.rotate->axis, {1, 0, 0});
+  expect_vec3(turned.rotate->center, {0, 0.5, 0});
+  EXPECT_DOUBLE_EQ(turned.rotate->angle, std::numbers::pi / 2);
+  // Both: the axis as written (normalised only when the rotation is formed).
+  const auto& both = *as<DirichletEffect>(scene.effects[1]).motion;
+  expect_vec3(both.translate, {0, 0, 0.1});
+  ASSERT_TRUE(both.rotate);
+  expect_vec3(both.rotate->axis, {0, 0, 2});
+  expect_vec3(both.rotate->center, {1, 0, 0});
+  EXPECT_DOUBLE_EQ(both.rotate->angle, -0.5);
+  EXPECT_EQ(both.over, (std::array<double, 2>{1.0, 3.0}));
+  // translate alone: no rotation, as before.
+  EXPECT_FALSE(as<DirichletEffect>(scene.effects[2]).motion->rotate);
+}
+
 TEST(SceneParse, BlockStyleWhereTakesPointWithoutQuotes) {
   ScratchDir dir;
   SceneText text;
@@ -428,6 +460,55 @@ TEST(Motion, EqualEndsMakeAJump) {
   expect_vec3(jump.at(2.0), {0, 0, 0});
   expect_vec3(jump.at(2.0 + 1e-12), {1, 2, 3});
   EXPECT_FALSE(std::isnan(jump.at(2.0)[0]));
+}
+
+/// φ(X, t) = X + displacement(X, t).
+Vec3 placed(const Motion& motion, const Vec3& X, double t) {
+  const Vec3 d = motion.displacement(X, t);
+  return {X[0] + d[0], X[1] + d[1], X[2] + d[2]};
+}
+
+void expect_near_vec3(const Vec3& actual, const Vec3& expected, double tolerance = 1e-14) {
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR(actual[i], expected[i], tolerance) << "component " << i;
+}
+
+TEST(Motion, AQuarterTurnAboutAnAxisThroughACentre) {
+  // About the vertical line through (1, 2, 0), counter-clockwise seen from +z; the axis's length
+  // does not matter.
+  Motion motion;
+  motion.over = {1.0, 3.0};
+  motion.rotate = Rotation{{0, 0, 5}, {1, 2, 0}, std::numbers::pi / 2};
+  const Vec3 X{2, 2, 0.7};  // 1 m along +x from the axis
+  expect_near_vec3(placed(motion, X, 0.0), X);  // before t0
+  expect_near_vec3(placed(motion, X, 1.0), X);  // at t0
+  // Midway: an eighth of a turn.
+  const double r = std::sqrt(0.5);
+  expect_near_vec3(placed(motion, X, 2.0), {1 + r, 2 + r, 0.7});
+  expect_near_vec3(placed(motion, X, 3.0), {1, 3, 0.7});    // at t1: +x turned to +y
+  expect_near_vec3(placed(motion, X, 50.0), {1, 3, 0.7});   // and stays there
+  // A point of the axis stays at every time.
+  for (const double t : {0.0, 1.5, 2.0, 3.0, 10.0})
+    expect_near_vec3(motion.displacement({1, 2, -4}, t), {0, 0, 0});
+  // The rotation at t1 turns directions: R e_x = e_y, R e_z = e_z.
+  const Mat3 R = motion.rotation(3.0);
+  expect_near_vec3({R[0][0], R[1][0], R[2][0]}, {0, 1, 0});
+  expect_near_vec3({R[0][2], R[1][2], R[2][2]}, {0, 0, 1});
+  // The right-hand rule about an axis along −z turns the other way.
+  motion.rotate->axis = {0, 0, -1};
+  expect_near_vec3(placed(motion, X, 3.0), {1, 1, 0.7});
+}
+
+TEST(Motion, RotatesFirstThenTranslates) {
+  // A half turn about the x axis through the origin, then a translation by (0, 0, 1):
+  // (0, 1, 0) → (0, −1, 0) → (0, −1, 1). Translating first would give (0, −1, −1).
+  const Motion motion{{0, 0, 1}, {0.0, 2.0}, Rotation{{1, 0, 0}, {0, 0, 0}, std::numbers::pi}};
+  expect_near_vec3(placed(motion, {0, 1, 0}, 2.0), {0, -1, 1});
+  // Midway: a quarter turn, half the translation: (0, 1, 0) → (0, 0, 1) → (0, 0, 1.5).
+  expect_near_vec3(placed(motion, {0, 1, 0}, 1.0), {0, 0, 1.5});
+  // The reach bounds every displacement of points within the radius of the centre.
+  EXPECT_DOUBLE_EQ(motion.reach(1.0), 1.0 + 2.0);
+  EXPECT_DOUBLE_EQ(Motion{{3, 4, 0}, {0, 1}}.reach(10.0), 5.0);
 }
 
 TEST(EffectName, NamesEveryEffect) {
@@ -600,6 +681,14 @@ TEST(SceneErrors, OutOfRangeValues) {
                      {"material.poisson_ratio: must be in (-1, 0.5); got '0.5'"});
   expect_bad_fixture("motion_backwards.yaml", 10,
                      {"effects[2].clamp.motion.over: t0 must be <= t1; got '[10, 2]'"});
+}
+
+TEST(SceneErrors, RotationWithAZeroAxisOrAnUnknownKey) {
+  expect_bad_fixture("motion_rotate_zero_axis.yaml", 12,
+                     {"effects[2].clamp.motion.rotate.axis: the axis must be a non-zero vector",
+                      "got '[0, 0, 0]'", "expected a direction such as [1, 0, 0]"});
+  expect_bad_fixture("motion_rotate_unknown_key.yaml", 11,
+                     {"effects[1].dirichlet.motion.rotate", "degrees", "axis, center, angle"});
 }
 
 TEST(SceneErrors, BadListEntries) {
@@ -855,6 +944,36 @@ TEST(SceneErrors, InlineDefects) {
        with([](SceneText& t) { t.extra = "probes: {\"a,b\": {at: [0, 0, 0]}}\n"; }),
        5,
        {"probes.a,b: probe names may hold only", "got 'a,b'"}},
+      {"motion_without_translate_or_rotate",
+       with([](SceneText& t) {
+         t.effects = "effects:\n  - dirichlet: {where: boundary(left), motion: {over: [0, 1]}}\n";
+       }),
+       2,
+       {"effects[0].dirichlet.motion: a motion needs `translate`, `rotate` or both"}},
+      {"rotation_without_angle",
+       with([](SceneText& t) {
+         t.effects =
+             "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
+             "center: [0, 0, 0]}, over: [0, 1]}}\n";
+       }),
+       2,
+       {"effects[0].clamp.motion.rotate.angle: required key is missing", "radians"}},
+      {"rotation_infinite_angle",
+       with([](SceneText& t) {
+         t.effects =
+             "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
+             "center: [0, 0, 0], angle: .inf}, over: [0, 1]}}\n";
+       }),
+       2,
+       {"effects[0].clamp.motion.rotate.angle: must be a finite number", "got '.inf'"}},
+      {"rotation_centre_nan",
+       with([](SceneText& t) {
+         t.effects =
+             "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
+             "center: [0, .nan, 0], angle: 1}, over: [0, 1]}}\n";
+       }),
+       2,
+       {"effects[0].clamp.motion.rotate.center[1]: must be a finite number"}},
       {"missing_time",
        with([](SceneText& t) { t.time = ""; }),
        1,
