@@ -4,7 +4,8 @@
 //   inertia       ρ/(2 dt²) ∫ |u − û|² dA,  û = u_n + dt v_n  implicit Euler
 //   loads         −s(t) f·u   (gravity ρg, surface, line and point forces; s ramps 0 → 1)
 //   penalties     β/2 ∫ |P(u − d(X, t))|² ds  (+ β_r/2 ∫ |∂_ν u − (R(t) − I) ∂_ν X|² ds for
-//                 clamps), β = h^-σ, d(X, t) = φ_t(X) − X of a rigid motion φ_t(X) = R(X − c) + c + T
+//                 clamps), β = h^-σ, d(X, t) = φ_t(X) − X of the rigid motion
+//                 φ_t(X) = R(t)(X − c) + c + T(t)
 //
 // Energies are measured from the reference configuration (u = 0), where loads do no work.
 #pragma once

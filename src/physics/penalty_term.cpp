@@ -11,8 +11,7 @@
 namespace mlshell {
 
 PenaltyTerm::PenaltyTerm(std::string name, std::vector<PenaltySample> samples,
-                         std::array<bool, 3> components,
-                         PrescribedMotion motion)
+                         std::array<bool, 3> components, PrescribedMotion motion)
     : EnergyTerm(std::move(name)),
       samples_(std::move(samples)),
       components_(components),
@@ -53,8 +52,8 @@ PetscErrorCode PenaltyTerm::add(const std::vector<double>& u, CompensatedSum& en
     const int n = static_cast<int>(s.nodes.size());
     const Eigen::Vector3d d = placement.displacement(s.reference);
     // r = u(ξ) − d, t = ∂_ν u − (R − I) ∂_ν X: the slope's departure from the turned one.
-    const Eigen::Vector3d slope = s.conormal.empty() ? Eigen::Vector3d::Zero()
-                                                     : placement.turn(s.reference_conormal);
+    const Eigen::Vector3d slope =
+        s.conormal.empty() ? Eigen::Vector3d::Zero() : placement.turn(s.reference_conormal);
     double r[3] = {0, 0, 0}, t[3] = {-slope[0], -slope[1], -slope[2]};
     for (int i = 0; i < n; ++i)
       for (int c = 0; c < 3; ++c) {

@@ -32,7 +32,8 @@ Rotation read_rotation(const Field& field) {
   const Field axis = field.require("axis", "[ax, ay, az], the direction of the axis");
   rotation.axis = axis.numbers<3>("[ax, ay, az]");
   const double length = std::hypot(rotation.axis[0], rotation.axis[1], rotation.axis[2]);
-  axis.check(length > 0.0 && std::isfinite(length), "the axis must be a non-zero vector of finite length",
+  axis.check(length > 0.0 && std::isfinite(length),
+             "the axis must be a non-zero vector of finite length",
              "a direction such as [1, 0, 0]");
   rotation.center =
       field.require("center", "[cx, cy, cz] in m, a point of the axis").numbers<3>("[cx, cy, cz]");

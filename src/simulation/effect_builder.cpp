@@ -158,8 +158,7 @@ PrescribedMotion motion_function(const std::optional<Motion>& m) {
     const Mat3 R = motion.rotation(t);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) placement.rotation(i, j) = R[i][j];
-    if (motion.rotate)
-      placement.center = Eigen::Vector3d(motion.rotate->center.data());
+    if (motion.rotate) placement.center = Eigen::Vector3d(motion.rotate->center.data());
     const Vec3 T = motion.at(t);
     placement.translation = Eigen::Vector3d(T.data());
     return placement;

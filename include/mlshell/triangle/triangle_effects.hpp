@@ -209,8 +209,7 @@ class MidedgeClampTerm final : public EnergyTerm {
   /// `edges`: boundary edges (v0 → v1 in their triangle's direction) to clamp.
   MidedgeClampTerm(std::string name, const TriangleDiscretization& disc,
                    const ParallelLayout& layout, const std::vector<std::array<int, 2>>& edges,
-                   const TriangleShellParameters& params,
-                   PrescribedMotion motion);
+                   const TriangleShellParameters& params, PrescribedMotion motion);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
 

@@ -8,8 +8,7 @@ namespace mlshell {
 MidedgeClampTerm::MidedgeClampTerm(std::string name, const TriangleDiscretization& disc,
                                    const ParallelLayout& layout,
                                    const std::vector<std::array<int, 2>>& edges,
-                                   const TriangleShellParameters& params,
-                                   PrescribedMotion motion)
+                                   const TriangleShellParameters& params, PrescribedMotion motion)
     : EnergyTerm(std::move(name)), motion_(std::move(motion)) {
   const auto& X = disc.points();
   const TriangleTopology& topo = disc.topology();

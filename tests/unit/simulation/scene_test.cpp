@@ -382,7 +382,8 @@ TEST(SceneParse, MotionsRotateTranslateOrBoth) {
       "effects:\n"
       "  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], center: [0, 0.5, 0], "
       "angle: 1.5707963267948966}, over: [0, 2]}}\n"
-      "  - dirichlet:\n      where: boundary(right)\n      motion:\n        translate: [0, 0, 0.1]\n"
+      "  - dirichlet:\n      where: boundary(right)\n      motion:\n        translate: [0, 0, "
+      "0.1]\n"
       "        rotate: {axis: [0, 0, 2], center: [1, 0, 0], angle: -0.5}\n        over: [1, 3]\n"
       "  - dirichlet: {where: boundary(top), motion: {translate: [0.1, 0, 0], over: [0, 1]}}\n";
   const Scene scene = parse_scene(dir.write("motions.yaml", text.str()));
@@ -479,14 +480,14 @@ TEST(Motion, AQuarterTurnAboutAnAxisThroughACentre) {
   Motion motion;
   motion.over = {1.0, 3.0};
   motion.rotate = Rotation{{0, 0, 5}, {1, 2, 0}, std::numbers::pi / 2};
-  const Vec3 X{2, 2, 0.7};  // 1 m along +x from the axis
+  const Vec3 X{2, 2, 0.7};                      // 1 m along +x from the axis
   expect_near_vec3(placed(motion, X, 0.0), X);  // before t0
   expect_near_vec3(placed(motion, X, 1.0), X);  // at t0
   // Midway: an eighth of a turn.
   const double r = std::sqrt(0.5);
   expect_near_vec3(placed(motion, X, 2.0), {1 + r, 2 + r, 0.7});
-  expect_near_vec3(placed(motion, X, 3.0), {1, 3, 0.7});    // at t1: +x turned to +y
-  expect_near_vec3(placed(motion, X, 50.0), {1, 3, 0.7});   // and stays there
+  expect_near_vec3(placed(motion, X, 3.0), {1, 3, 0.7});   // at t1: +x turned to +y
+  expect_near_vec3(placed(motion, X, 50.0), {1, 3, 0.7});  // and stays there
   // A point of the axis stays at every time.
   for (const double t : {0.0, 1.5, 2.0, 3.0, 10.0})
     expect_near_vec3(motion.displacement({1, 2, -4}, t), {0, 0, 0});

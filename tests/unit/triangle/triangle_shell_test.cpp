@@ -486,7 +486,8 @@ TEST(TriangleShell, ClampTurnsItsFrameWithARotatingMotion) {
         "clamp_rotate",
         std::string("geometry: {mesh: {generator: rectangle, size: [2, 1], faces: [4, 2]}}\n") +
             "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, "
-            "thickness: 0.01, volume_density: 500, bending: " + bending + "}\n" +
+            "thickness: 0.01, volume_density: 500, bending: " +
+            bending + "}\n" +
             "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
             "center: [0, 0.5, 0], angle: 1.5707963267948966}, over: [0, 1]}}\n"
             "time: {dt: 1, steps: 1}\n");
@@ -529,8 +530,7 @@ TEST(TriangleShell, AStripTwistedByItsClampedEndEndsAtTheRotatedPositions) {
   ASSERT_EQ(solved.status, 0);
   const auto& disc =
       static_cast<const TriangleDiscretization&>(solved.simulation->discretization());
-  const std::vector<double> turned =
-      turned_about_x(disc, std::numbers::pi / 2, Point3(1, 0.1, 0));
+  const std::vector<double> turned = turned_about_x(disc, std::numbers::pi / 2, Point3(1, 0.1, 0));
   int right = 0, left = 0;
   for (int i = 0; i < disc.num_points(); ++i) {
     const Point3& X = disc.points()[i];
