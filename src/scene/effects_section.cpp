@@ -27,6 +27,10 @@ std::optional<double> optional_positive(const Field& params, std::string_view ke
 
 /// `rotate: {axis: [ax, ay, az], center: [cx, cy, cz], angle: a}` (a in radians)
 Rotation read_rotation(const Field& field) {
+  if (field.is_map())
+    if (const std::optional<Field> degrees = field.find("degrees"))
+      degrees->fail("angles are given in radians, under `angle`",
+                    "angle: a in radians, e.g. angle: 1.5707963267948966 for 90 degrees");
   field.expect_keys({"axis", "center", "angle"});
   Rotation rotation;
   const Field axis = field.require("axis", "[ax, ay, az], the direction of the axis");

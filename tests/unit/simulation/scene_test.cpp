@@ -689,7 +689,8 @@ TEST(SceneErrors, RotationWithAZeroAxisOrAnUnknownKey) {
                      {"effects[2].clamp.motion.rotate.axis: the axis must be a non-zero vector",
                       "got '[0, 0, 0]'", "expected a direction such as [1, 0, 0]"});
   expect_bad_fixture("motion_rotate_unknown_key.yaml", 11,
-                     {"effects[1].dirichlet.motion.rotate", "degrees", "axis, center, angle"});
+                     {"effects[1].dirichlet.motion.rotate.degrees: angles are given in radians, "
+                      "under `angle`; got '90'"});
 }
 
 TEST(SceneErrors, BadListEntries) {
