@@ -509,7 +509,8 @@ TEST(Motion, RotatesFirstThenTranslates) {
   expect_near_vec3(placed(motion, {0, 1, 0}, 1.0), {0, 0, 1.5});
   // The reach bounds every displacement of points within the radius of the centre.
   EXPECT_DOUBLE_EQ(motion.reach(1.0), 1.0 + 2.0);
-  EXPECT_DOUBLE_EQ(Motion{{3, 4, 0}, {0, 1}}.reach(10.0), 5.0);
+  const Motion translation{{3, 4, 0}, {0, 1}};
+  EXPECT_DOUBLE_EQ(translation.reach(10.0), 5.0);
 }
 
 TEST(EffectName, NamesEveryEffect) {
