@@ -951,7 +951,7 @@ TEST(SceneErrors, InlineDefects) {
        with([](SceneText& t) {
          t.effects = "effects:\n  - dirichlet: {where: boundary(left), motion: {over: [0, 1]}}\n";
        }),
-       2,
+       4,
        {"effects[0].dirichlet.motion: a motion needs `translate`, `rotate` or both"}},
       {"rotation_without_angle",
        with([](SceneText& t) {
@@ -959,7 +959,7 @@ TEST(SceneErrors, InlineDefects) {
              "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
              "center: [0, 0, 0]}, over: [0, 1]}}\n";
        }),
-       2,
+       4,
        {"effects[0].clamp.motion.rotate.angle: required key is missing", "radians"}},
       {"rotation_infinite_angle",
        with([](SceneText& t) {
@@ -967,7 +967,7 @@ TEST(SceneErrors, InlineDefects) {
              "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
              "center: [0, 0, 0], angle: .inf}, over: [0, 1]}}\n";
        }),
-       2,
+       4,
        {"effects[0].clamp.motion.rotate.angle: must be a finite number", "got '.inf'"}},
       {"rotation_centre_nan",
        with([](SceneText& t) {
@@ -975,7 +975,7 @@ TEST(SceneErrors, InlineDefects) {
              "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
              "center: [0, .nan, 0], angle: 1}, over: [0, 1]}}\n";
        }),
-       2,
+       4,
        {"effects[0].clamp.motion.rotate.center[1]: must be a finite number"}},
       {"missing_time",
        with([](SceneText& t) { t.time = ""; }),
