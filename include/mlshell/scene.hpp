@@ -211,6 +211,8 @@ using Mat3 = std::array<Vec3, 3>;
 /// the rotation R by the angle s θ about the axis through c first, then the translation T; both
 /// grow linearly from 0 at t0 to their full value at t1 and stay there (keyframes: a list of such
 /// segments applied one after another is not supported; one segment per effect).
+/// motion_function (effect_builder.hpp) turns it into the placements φ_t that the energy terms
+/// apply (RigidPlacement, prescribed_motion.hpp).
 struct Motion {
   Vec3 translate{0, 0, 0};
   std::array<double, 2> over{0.0, 0.0};  ///< t0 <= t1; t0 == t1 means a jump at t0
@@ -223,8 +225,6 @@ struct Motion {
   /// R = I + sin α K + (1 − cos α) K², K the cross-product matrix of the unit axis); the
   /// identity without `rotate`.
   Mat3 rotation(double t) const;
-  /// φ(X, t) − X: the prescribed displacement of the reference point X at time t.
-  Vec3 displacement(const Vec3& X, double t) const;
   /// An upper bound of |φ(X, t) − X| over t for points X within `radius` of the rotation's
   /// centre: |T| + 2 radius |sin(θ/2)| (|θ| ≤ π), or |T| + 2 radius beyond a half turn.
   double reach(double radius) const;

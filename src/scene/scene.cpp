@@ -248,16 +248,6 @@ Mat3 Motion::rotation(double t) const {
   return R;
 }
 
-Vec3 Motion::displacement(const Vec3& X, double t) const {
-  Vec3 d = at(t);
-  if (!rotate) return d;
-  const Mat3 R = rotation(t);
-  const Vec3& c = rotate->center;
-  const Vec3 r{X[0] - c[0], X[1] - c[1], X[2] - c[2]};
-  for (int i = 0; i < 3; ++i) d[i] += R[i][0] * r[0] + R[i][1] * r[1] + R[i][2] * r[2] - r[i];
-  return d;
-}
-
 double Motion::reach(double radius) const {
   double d = std::sqrt(translate[0] * translate[0] + translate[1] * translate[1] +
                        translate[2] * translate[2]);

@@ -3,6 +3,8 @@
 // elastic one), and closed-form values of the inertia and load terms under a rigid translation.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -163,10 +165,16 @@ TEST(EnergyTerms, SupportsCostNothingAlongTheirOwnRigidMotions) {
                                ? *std::get<DirichletEffect>(effect).motion
                                : *std::get<ClampEffect>(effect).motion;
     ASSERT_TRUE(motion.rotate);
+    // The full motion, written out: R(θ)(X − c) + c + T − X.
+    const Eigen::Vector3d axis(motion.rotate->axis.data()), c(motion.rotate->center.data()),
+        T(motion.translate.data());
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(motion.rotate->angle, axis.normalized()).toRotationMatrix();
     std::vector<double> u(3 * n);
     for (int i = 0; i < n; ++i) {
-      const Vec3 d = motion.displacement({X[3 * i], X[3 * i + 1], X[3 * i + 2]}, 2.0);
-      for (int c = 0; c < 3; ++c) u[3 * i + c] = d[c];
+      const Eigen::Vector3d Xi(X[3 * i], X[3 * i + 1], X[3 * i + 2]);
+      const Eigen::Vector3d d = R * (Xi - c) + c + T - Xi;
+      for (int k = 0; k < 3; ++k) u[3 * i + k] = d[k];
     }
     const EnergyTerm& term = *tp.problem->terms()[index + 1];  // after the elastic term
     ASSERT_EQ(term.name(), name);

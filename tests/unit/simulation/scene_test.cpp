@@ -463,56 +463,6 @@ TEST(Motion, EqualEndsMakeAJump) {
   EXPECT_FALSE(std::isnan(jump.at(2.0)[0]));
 }
 
-/// φ(X, t) = X + displacement(X, t).
-Vec3 placed(const Motion& motion, const Vec3& X, double t) {
-  const Vec3 d = motion.displacement(X, t);
-  return {X[0] + d[0], X[1] + d[1], X[2] + d[2]};
-}
-
-void expect_near_vec3(const Vec3& actual, const Vec3& expected, double tolerance = 1e-14) {
-  for (std::size_t i = 0; i < 3; ++i)
-    EXPECT_NEAR(actual[i], expected[i], tolerance) << "component " << i;
-}
-
-TEST(Motion, AQuarterTurnAboutAnAxisThroughACentre) {
-  // About the vertical line through (1, 2, 0), counter-clockwise seen from +z; the axis's length
-  // does not matter.
-  Motion motion;
-  motion.over = {1.0, 3.0};
-  motion.rotate = Rotation{{0, 0, 5}, {1, 2, 0}, std::numbers::pi / 2};
-  const Vec3 X{2, 2, 0.7};                      // 1 m along +x from the axis
-  expect_near_vec3(placed(motion, X, 0.0), X);  // before t0
-  expect_near_vec3(placed(motion, X, 1.0), X);  // at t0
-  // Midway: an eighth of a turn.
-  const double r = std::sqrt(0.5);
-  expect_near_vec3(placed(motion, X, 2.0), {1 + r, 2 + r, 0.7});
-  expect_near_vec3(placed(motion, X, 3.0), {1, 3, 0.7});   // at t1: +x turned to +y
-  expect_near_vec3(placed(motion, X, 50.0), {1, 3, 0.7});  // and stays there
-  // A point of the axis stays at every time.
-  for (const double t : {0.0, 1.5, 2.0, 3.0, 10.0})
-    expect_near_vec3(motion.displacement({1, 2, -4}, t), {0, 0, 0});
-  // The rotation at t1 turns directions: R e_x = e_y, R e_z = e_z.
-  const Mat3 R = motion.rotation(3.0);
-  expect_near_vec3({R[0][0], R[1][0], R[2][0]}, {0, 1, 0});
-  expect_near_vec3({R[0][2], R[1][2], R[2][2]}, {0, 0, 1});
-  // The right-hand rule about an axis along −z turns the other way.
-  motion.rotate->axis = {0, 0, -1};
-  expect_near_vec3(placed(motion, X, 3.0), {1, 1, 0.7});
-}
-
-TEST(Motion, RotatesFirstThenTranslates) {
-  // A half turn about the x axis through the origin, then a translation by (0, 0, 1):
-  // (0, 1, 0) → (0, −1, 0) → (0, −1, 1). Translating first would give (0, −1, −1).
-  const Motion motion{{0, 0, 1}, {0.0, 2.0}, Rotation{{1, 0, 0}, {0, 0, 0}, std::numbers::pi}};
-  expect_near_vec3(placed(motion, {0, 1, 0}, 2.0), {0, -1, 1});
-  // Midway: a quarter turn, half the translation: (0, 1, 0) → (0, 0, 1) → (0, 0, 1.5).
-  expect_near_vec3(placed(motion, {0, 1, 0}, 1.0), {0, 0, 1.5});
-  // The reach bounds every displacement of points within the radius of the centre.
-  EXPECT_DOUBLE_EQ(motion.reach(1.0), 1.0 + 2.0);
-  const Motion translation{{3, 4, 0}, {0, 1}};
-  EXPECT_DOUBLE_EQ(translation.reach(10.0), 5.0);
-}
-
 TEST(EffectName, NamesEveryEffect) {
   EXPECT_EQ(effect_name(InertiaEffect{}), "inertia");
   EXPECT_EQ(effect_name(GravityEffect{}), "gravity");
