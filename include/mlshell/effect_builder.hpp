@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "mlshell/level_problem.hpp"
+#include "mlshell/prescribed_motion.hpp"
 #include "mlshell/scene.hpp"
 #include "mlshell/subdivision/selection.hpp"
 
@@ -50,8 +51,9 @@ struct PenaltyScale {
 void add_effect_terms(const Scene& scene, LevelProblem& problem, const std::string& where,
                       const std::function<void(const Effect&, const std::string&)>& build);
 
-/// d(t) of a Dirichlet condition's or clamp's motion (zero without one).
-std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motion>& motion);
+/// The placement φ_t of a Dirichlet condition's or clamp's motion at each time t (the identity
+/// without one): R(s(t) θ) about the rotation's centre, then the translation s(t) T.
+PrescribedMotion motion_function(const std::optional<Motion>& motion);
 
 /// The membrane stiffness of the paper's denim in its stiffer (weft) direction, k3·τ =
 /// 9.03 MPa × 0.66 mm: the reference that gives its scenes β = h^-σ.

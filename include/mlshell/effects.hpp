@@ -3,7 +3,9 @@
 //   elastic       ∫ J̄ ∫ ψ(Ẽ(ξ³)) dξ³ dω                   membrane + bending, eq. (3.3)
 //   inertia       ρ/(2 dt²) ∫ |u − û|² dA,  û = u_n + dt v_n  implicit Euler
 //   loads         −s(t) f·u   (gravity ρg, surface, line and point forces; s ramps 0 → 1)
-//   penalties     β/2 ∫ |P(u − d(t))|² ds  (+ β_r/2 ∫ |∂_ν u|² ds for clamps), β = h^-σ
+//   penalties     β/2 ∫ |P(u − d(X, t))|² ds  (+ β_r/2 ∫ |∂_ν u − (R(t) − I) ∂_ν X|² ds for
+//                 clamps), β = h^-σ, d(X, t) = φ_t(X) − X of the rigid motion
+//                 φ_t(X) = R(t)(X − c) + c + T(t)
 //
 // Energies are measured from the reference configuration (u = 0), where loads do no work.
 #pragma once
@@ -13,6 +15,7 @@
 #include <memory>
 
 #include "mlshell/energy_term.hpp"
+#include "mlshell/prescribed_motion.hpp"
 #include "mlshell/shell/material.hpp"
 #include "mlshell/shell/shell_kinematics.hpp"
 
@@ -101,19 +104,25 @@ struct PenaltySample {
   std::vector<double> conormal;  ///< ∂_ν N_i (clamp rotation), empty otherwise
   double weight = 0.0;           ///< β × quadrature weight × arc length (β for single points)
   double rotation_weight = 0.0;
+  Eigen::Vector3d reference = Eigen::Vector3d::Zero();  ///< X(ξ), where the motion is taken
+  /// ∂_ν X(ξ), the reference slope across the boundary (clamps): the motion turns it by R.
+  Eigen::Vector3d reference_conormal = Eigen::Vector3d::Zero();
 };
 
-/// Penalty boundary conditions: β/2 Σ w |P(u(ξ) − d(t))|² (+ rotation), eq. (3.6).
+/// Penalty boundary conditions (eq. 3.6) that follow a prescribed rigid motion φ_t:
+///   β/2 Σ w |P(u(ξ) − d(ξ, t))|² + β_r/2 Σ w |∂_ν u(ξ) − (R(t) − I) ∂_ν X(ξ)|²,
+/// d(ξ, t) = φ_t(X(ξ)) − X(ξ): the point goes where the motion takes it, and a clamp's slope
+/// across the boundary, ∂_ν x = ∂_ν X + ∂_ν u, turns with the motion's rotation R to R ∂_ν X.
 class PenaltyTerm final : public EnergyTerm {
  public:
   PenaltyTerm(std::string name, std::vector<PenaltySample> samples, std::array<bool, 3> components,
-              std::function<Eigen::Vector3d(double)> motion);
+              PrescribedMotion motion);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
-  /// max over this rank's samples of |P(u(ξ) − d(t))| (m): how far the penalty lets go.
+  /// max over this rank's samples of |P(u(ξ) − d(ξ, t))| (m): how far the penalty lets go.
   double max_violation(const std::vector<double>& u) const;
   /// Augmented-Lagrangian mode (method of multipliers): the energy becomes
-  /// Σ (s w/2 |P c|² − λ·P c) with c = u(ξ) − d(t), w = β × weight, multipliers λ per sample and
+  /// Σ (s w/2 |P c|² − λ·P c) with c = u(ξ) − d(ξ, t), w = β × weight, multipliers λ per sample and
   /// a penalty factor s (1 at first), updated after each solve until max |P c| ≤ tolerance (m):
   /// λ ← λ − s w P c, and s ← 10 s when the violation fell by less than 4× since the last update.
   void enable_augmented_lagrangian(double tolerance) {
@@ -125,16 +134,16 @@ class PenaltyTerm final : public EnergyTerm {
   void update_multipliers(const std::vector<double>& u, double violation) override;
 
  private:
-  /// P(u(ξ_s) − d(t)) of sample s.
+  /// P(u(ξ_s) − d(ξ_s, t)) of sample s at the placement φ_t.
   Eigen::Vector3d residual(const PenaltySample& s, const std::vector<double>& u,
-                           const Eigen::Vector3d& d) const;
+                           const RigidPlacement& placement) const;
   double tolerance_ = 0.0;
   std::vector<Eigen::Vector3d> multipliers_;  // λ_s, augmented-Lagrangian mode
   double scale_ = 1.0;                        // s
   double last_violation_ = INFINITY;          // at the last update
   std::vector<PenaltySample> samples_;
   std::array<bool, 3> components_;
-  std::function<Eigen::Vector3d(double)> motion_;
+  PrescribedMotion motion_;
 };
 
 }  // namespace mlshell

@@ -191,14 +191,43 @@ struct Where {
 // ----------------------------------------------------------------------------------------------
 // Effects: exactly the ones the scene lists are built.
 
-/// `motion: {translate: [dx, dy, dz], over: [t0, t1]}`: the prescribed displacement grows
-/// linearly from 0 at t0 to `translate` at t1 and stays there (keyframes: a list of such
+/// `rotate: {axis: [ax, ay, az], center: [cx, cy, cz], angle: a}`: a rigid rotation by the
+/// angle a (radians, right-handed about the axis) about the line through `center` along `axis`.
+struct Rotation {
+  Vec3 axis{0, 0, 1};    ///< any non-zero length
+  Vec3 center{0, 0, 0};  ///< a point of the axis (m)
+  double angle = 0.0;    ///< radians
+};
+
+/// 3×3 matrix, row-major: `m[i][j]`.
+using Mat3 = std::array<Vec3, 3>;
+
+/// A prescribed rigid motion (of `dirichlet` and `clamp` selections; written so that scripted
+/// obstacles can take the same one):
+///   `motion: {translate: [dx, dy, dz], rotate: {axis, center, angle}, over: [t0, t1]}`,
+/// at least one of `translate` and `rotate`. With s(t) = clamp((t − t0)/(t1 − t0), 0, 1) the
+/// point X of the reference is moved to
+///   φ(X, t) = R(s θ) (X − c) + c + s T,
+/// the rotation R by the angle s θ about the axis through c first, then the translation T; both
+/// grow linearly from 0 at t0 to their full value at t1 and stay there (keyframes: a list of such
 /// segments applied one after another is not supported; one segment per effect).
+/// motion_function (effect_builder.hpp) turns it into the placements φ_t that the energy terms
+/// apply (RigidPlacement, prescribed_motion.hpp).
 struct Motion {
   Vec3 translate{0, 0, 0};
   std::array<double, 2> over{0.0, 0.0};  ///< t0 <= t1; t0 == t1 means a jump at t0
-  /// Prescribed displacement at time t.
+  std::optional<Rotation> rotate;
+  /// s(t) ∈ [0, 1]: 0 up to t0, 1 from t1 on (a jump just after t0 when t0 == t1).
+  double progress(double t) const;
+  /// The translation s(t) T at time t.
   Vec3 at(double t) const;
+  /// R(s(t) θ): the rotation by the angle reached at t about the unit axis (Rodrigues' formula
+  /// R = I + sin α K + (1 − cos α) K², K the cross-product matrix of the unit axis); the
+  /// identity without `rotate`.
+  Mat3 rotation(double t) const;
+  /// An upper bound of |φ(X, t) − X| over t for points X within `radius` of the rotation's
+  /// centre: |T| + 2 radius |sin(θ/2)| (|θ| ≤ π), or |T| + 2 radius beyond a half turn.
+  double reach(double radius) const;
 };
 
 struct InertiaEffect {};

@@ -9,7 +9,8 @@
 //   A: reference surface area; Y: Young's modulus (Clyde: the largest k_j); τ: thickness;
 //   Σ|F| = ρ|g|A (gravity) + |f|A (surface) + |f|ℓ (line) + |F| (point);
 //   ℓ = L + D + (inertia) ½ (Σ|F| / ρA) T²: the size L of the surface (its bounding-box
-//   diagonal), plus the largest prescribed motion D, plus the distance the loads alone could
+//   diagonal), plus the largest prescribed motion D (Motion::reach of radius L: |T| plus the
+//   chord 2L|sin(θ/2)| of a rotation), plus the distance the loads alone could
 //   carry the shell in the scene's time T = steps × dt.
 #pragma once
 

@@ -1,6 +1,8 @@
-// Penalty Dirichlet and clamp conditions (paper eq. 3.6): β/2 ‖P(u − d(t))‖² on curves and
-// points, plus β_r/2 ‖∂_ν u‖² (the slope across the boundary) for clamps; in the
-// augmented-Lagrangian mode also −λ·P(u − d(t)) with multipliers updated between solves.
+// Penalty Dirichlet and clamp conditions (paper eq. 3.6): β/2 ‖P(u − d(X, t))‖² on curves and
+// points, plus β_r/2 ‖∂_ν u − (R − I) ∂_ν X‖² (the slope across the boundary, turned with the
+// motion) for clamps; in the augmented-Lagrangian mode also −λ·P(u − d(X, t)) with multipliers
+// updated between solves. d(X, t) = φ_t(X) − X is the displacement of the rigid motion
+// φ_t(X) = R(X − c) + c + T at the sample's reference point X.
 #include <algorithm>
 #include <cmath>
 
@@ -9,15 +11,15 @@
 namespace mlshell {
 
 PenaltyTerm::PenaltyTerm(std::string name, std::vector<PenaltySample> samples,
-                         std::array<bool, 3> components,
-                         std::function<Eigen::Vector3d(double)> motion)
+                         std::array<bool, 3> components, PrescribedMotion motion)
     : EnergyTerm(std::move(name)),
       samples_(std::move(samples)),
       components_(components),
       motion_(std::move(motion)) {}
 
 Eigen::Vector3d PenaltyTerm::residual(const PenaltySample& s, const std::vector<double>& u,
-                                      const Eigen::Vector3d& d) const {
+                                      const RigidPlacement& placement) const {
+  const Eigen::Vector3d d = placement.displacement(s.reference);
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < s.nodes.size(); ++i)
     for (int c = 0; c < 3; ++c) r[c] += s.value[i] * u[3 * s.nodes[i] + c];
@@ -26,16 +28,16 @@ Eigen::Vector3d PenaltyTerm::residual(const PenaltySample& s, const std::vector<
 }
 
 double PenaltyTerm::max_violation(const std::vector<double>& u) const {
-  const Eigen::Vector3d d = motion_(time_);
+  const RigidPlacement placement = motion_(time_);
   double worst = 0.0;
-  for (const PenaltySample& s : samples_) worst = std::max(worst, residual(s, u, d).norm());
+  for (const PenaltySample& s : samples_) worst = std::max(worst, residual(s, u, placement).norm());
   return worst;
 }
 
 void PenaltyTerm::update_multipliers(const std::vector<double>& u, double violation) {
-  const Eigen::Vector3d d = motion_(time_);
+  const RigidPlacement placement = motion_(time_);
   for (size_t k = 0; k < samples_.size(); ++k)
-    multipliers_[k] -= scale_ * samples_[k].weight * residual(samples_[k], u, d);
+    multipliers_[k] -= scale_ * samples_[k].weight * residual(samples_[k], u, placement);
   // Linear convergence at rate ~K/(K + s w) for a structure of stiffness K: stiffen when slow.
   if (violation > 0.25 * last_violation_) scale_ *= 10.0;
   last_violation_ = violation;
@@ -44,11 +46,15 @@ void PenaltyTerm::update_multipliers(const std::vector<double>& u, double violat
 PetscErrorCode PenaltyTerm::add(const std::vector<double>& u, CompensatedSum& energy,
                                 std::vector<double>* grad, Mat hess) const {
   PetscFunctionBeginUser;
-  const Eigen::Vector3d d = motion_(time_);
+  const RigidPlacement placement = motion_(time_);
   std::vector<double> ge, He;
   for (const PenaltySample& s : samples_) {
     const int n = static_cast<int>(s.nodes.size());
-    double r[3] = {0, 0, 0}, t[3] = {0, 0, 0};
+    const Eigen::Vector3d d = placement.displacement(s.reference);
+    // r = u(ξ) − d, t = ∂_ν u − (R − I) ∂_ν X: the slope's departure from the turned one.
+    const Eigen::Vector3d slope =
+        s.conormal.empty() ? Eigen::Vector3d::Zero() : placement.turn(s.reference_conormal);
+    double r[3] = {0, 0, 0}, t[3] = {-slope[0], -slope[1], -slope[2]};
     for (int i = 0; i < n; ++i)
       for (int c = 0; c < 3; ++c) {
         r[c] += s.value[i] * u[3 * s.nodes[i] + c];

@@ -2,6 +2,7 @@
 // `{name: parameters}`. Only the effects listed here are built by the simulation.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -24,11 +25,37 @@ std::optional<double> optional_positive(const Field& params, std::string_view ke
   return value ? std::optional<double>(value->positive_number()) : std::nullopt;
 }
 
-/// `motion: {translate: [dx, dy, dz], over: [t0, t1]}`
+/// `rotate: {axis: [ax, ay, az], center: [cx, cy, cz], angle: a}` (a in radians)
+Rotation read_rotation(const Field& field) {
+  if (field.is_map())
+    if (const std::optional<Field> degrees = field.find("degrees"))
+      degrees->fail("angles are given in radians, under `angle`",
+                    "angle: a in radians, e.g. angle: 1.5707963267948966 for 90 degrees");
+  field.expect_keys({"axis", "center", "angle"});
+  Rotation rotation;
+  const Field axis = field.require("axis", "[ax, ay, az], the direction of the axis");
+  rotation.axis = axis.numbers<3>("[ax, ay, az]");
+  const double length = std::hypot(rotation.axis[0], rotation.axis[1], rotation.axis[2]);
+  axis.check(length > 0.0 && std::isfinite(length),
+             "the axis must be a non-zero vector of finite length",
+             "a direction such as [1, 0, 0]");
+  rotation.center =
+      field.require("center", "[cx, cy, cz] in m, a point of the axis").numbers<3>("[cx, cy, cz]");
+  rotation.angle = field.require("angle", "a number in radians").number();
+  return rotation;
+}
+
+/// `motion: {translate: [dx, dy, dz], rotate: {...}, over: [t0, t1]}`
 Motion read_motion(const Field& field) {
-  field.expect_keys({"translate", "over"});
+  field.expect_keys({"translate", "rotate", "over"});
   Motion motion;
-  motion.translate = field.require("translate", "[dx, dy, dz] in m").numbers<3>("[dx, dy, dz]");
+  const std::optional<Field> translate = field.find("translate");
+  const std::optional<Field> rotate = field.find("rotate");
+  field.check(translate || rotate, "a motion needs `translate`, `rotate` or both",
+              "{translate: [dx, dy, dz], rotate: {axis: [ax, ay, az], center: [cx, cy, cz], "
+              "angle: a}, over: [t0, t1]}");
+  if (translate) motion.translate = translate->numbers<3>("[dx, dy, dz] in m");
+  if (rotate) motion.rotate = read_rotation(*rotate);
   const Field over = field.require("over", "[t0, t1] in s");
   motion.over = over.numbers<2>("[t0, t1]");
   over.check(motion.over[0] <= motion.over[1], "t0 must be <= t1");

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cctype>
 #include <climits>
+#include <cmath>
 #include <fstream>
 #include <iterator>
+#include <numbers>
 #include <sstream>
 
 #include "scene_sections.hpp"
@@ -219,11 +221,41 @@ Scene parse_scene(const std::filesystem::path& file) {
   return scene;
 }
 
+double Motion::progress(double t) const {
+  if (t <= over[0]) return 0.0;
+  if (t >= over[1]) return 1.0;
+  return (t - over[0]) / (over[1] - over[0]);
+}
+
 Vec3 Motion::at(double t) const {
-  if (t <= over[0]) return {0.0, 0.0, 0.0};
-  if (t >= over[1]) return translate;
-  const double s = (t - over[0]) / (over[1] - over[0]);
+  const double s = progress(t);
   return {s * translate[0], s * translate[1], s * translate[2]};
+}
+
+Mat3 Motion::rotation(double t) const {
+  Mat3 R{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+  if (!rotate) return R;
+  const Vec3& a = rotate->axis;
+  const double length = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  const Vec3 k{a[0] / length, a[1] / length, a[2] / length};
+  const double alpha = progress(t) * rotate->angle;
+  const double sin_a = std::sin(alpha), one_minus_cos = 1.0 - std::cos(alpha);
+  // K v = k × v; K² = k kᵀ − I.
+  const Mat3 K{Vec3{0, -k[2], k[1]}, Vec3{k[2], 0, -k[0]}, Vec3{-k[1], k[0], 0}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      R[i][j] += sin_a * K[i][j] + one_minus_cos * (k[i] * k[j] - (i == j ? 1.0 : 0.0));
+  return R;
+}
+
+double Motion::reach(double radius) const {
+  double d = std::sqrt(translate[0] * translate[0] + translate[1] * translate[1] +
+                       translate[2] * translate[2]);
+  if (rotate) {
+    const double half = 0.5 * std::abs(rotate->angle);
+    d += 2.0 * radius * (half >= 0.5 * std::numbers::pi ? 1.0 : std::sin(half));
+  }
+  return d;
 }
 
 std::string effect_name(const Effect& e) {

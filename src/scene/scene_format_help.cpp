@@ -51,8 +51,7 @@ material:                    required
     poisson_ratio: nu        in (-1, 0.5) (required)
   model: neo-hookean | st-venant-kirchhoff   triangle meshes (E, nu, thickness as above):
     volume_density: number   kg/m^3, >= 0 (required; instead of density)
-    bending: hinge | midedge hinge (default, paper 2) or midedge (Kirchhoff's plate;
-                             docs/physics.md)
+    bending: hinge | midedge hinge (default, paper 2) or midedge (Kirchhoff plate; docs/physics.md)
   thickness: number          m, > 0; required (denim preset: 0.66e-3)
   density: number            area density kg/m^2, >= 0; required (denim preset: 0.4)
   thickness_points: int      Gauss points through the thickness, 1..8 (default 3)
@@ -76,8 +75,9 @@ effects:                     optional list; only the listed effects are simulate
         surface (the paper's h^-sigma for its 1 m denim); penalty: explicit beta > 0.
     rotation_penalty: > 0 (default beta * h^2; triangle meshes: the clamp's k or D, default the
         shell's own bending stiffness).
-    MOTION = {translate: [dx, dy, dz], over: [t0, t1]}: the prescribed displacement is 0 until
-    t0, grows linearly to translate at t1 and stays there; t0 <= t1 (t0 == t1 is a jump).
+    MOTION = {translate: [dx, dy, dz], rotate: {axis: [ax, ay, az], center: [cx, cy, cz],
+    angle: a}, over: [t0, t1]}, translate or rotate or both: X moves to R(s a)(X - center) +
+    center + s translate (a in radians, right-handed); s: 0 until t0, linear to 1 at t1 >= t0.
 initial_state:               optional; default: the reference configuration
   affine: [[a11, a12, a13], [a21, a22, a23], [a31, a32, a33]]      x0 = A X + translate
   translate: [x, y, z]       m (default [0, 0, 0])

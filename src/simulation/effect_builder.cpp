@@ -57,7 +57,7 @@ namespace {
 struct LocalPoint {
   std::vector<PetscInt> nodes;
   PointBasis basis;
-  Point3 xu, xv;
+  Point3 x, xu, xv;  ///< X(ξ) and its tangents
 };
 
 LocalPoint local_point(const SubdivisionDiscretization& disc, const ParallelLayout& layout,
@@ -65,17 +65,19 @@ LocalPoint local_point(const SubdivisionDiscretization& disc, const ParallelLayo
   LocalPoint lp;
   lp.basis = disc.evaluator().evaluate({p})[0];
   lp.nodes = to_local_nodes(layout, lp.basis.nodes.data(), lp.basis.size());
+  lp.x = lp.basis.apply(kValue, disc.mesh().points);
   lp.xu = lp.basis.apply(kDu, disc.mesh().points);
   lp.xv = lp.basis.apply(kDv, disc.mesh().points);
   return lp;
 }
 
-/// Gauss points on this rank's selected boundary edges: the point, its arc-length weight, and
-/// the in-plane conormal derivative weights (∂_ν N_i).
+/// Gauss points on this rank's selected boundary edges: the point, its arc-length weight, the
+/// in-plane conormal derivative weights (∂_ν N_i) and the unit conormal ν = ∂_ν X itself.
 struct EdgeSample {
   LocalPoint point;
   double weight;
   std::vector<double> conormal;
+  Point3 conormal_direction = Point3::Zero();
 };
 
 std::vector<EdgeSample> edge_samples(const SubdivisionDiscretization& disc,
@@ -86,7 +88,7 @@ std::vector<EdgeSample> edge_samples(const SubdivisionDiscretization& disc,
   for (const BoundaryEdge& e : edges) {
     if (layout.face_owner(e.face) != layout.rank()) continue;
     for (size_t g = 0; g < rule.points.size(); ++g) {
-      EdgeSample s{local_point(disc, layout, disc.edge_point(e, rule.points[g])), 0.0, {}};
+      EdgeSample s{local_point(disc, layout, disc.edge_point(e, rule.points[g])), 0.0, {}, {}};
       const Point3 tangent = (e.edge % 2 == 0) ? s.point.xu : s.point.xv;
       s.weight = rule.weights[g] * tangent.norm();
       // ∂_ν = (ν·A¹) ∂_u + (ν·A²) ∂_v with ν ⊥ tangent in the tangent plane.
@@ -99,6 +101,8 @@ std::vector<EdgeSample> edge_samples(const SubdivisionDiscretization& disc,
           metric.inverse() * Eigen::Vector2d(nu.dot(s.point.xu), nu.dot(s.point.xv));
       for (int i = 0; i < s.point.basis.size(); ++i)
         s.conormal.push_back(c[0] * s.point.basis.w[kDu][i] + c[1] * s.point.basis.w[kDv][i]);
+      // Σ ∂_ν N_i X_i = c₀ X_u + c₁ X_v = ν (ν lies in the tangent plane).
+      s.conormal_direction = c[0] * s.point.xu + c[1] * s.point.xv;
       out.push_back(std::move(s));
     }
   }
@@ -146,12 +150,18 @@ void add_effect_terms(const Scene& scene, LevelProblem& problem, const std::stri
   }
 }
 
-std::function<Eigen::Vector3d(double)> motion_function(const std::optional<Motion>& m) {
-  if (!m) return [](double) { return Eigen::Vector3d::Zero(); };
+PrescribedMotion motion_function(const std::optional<Motion>& m) {
+  if (!m) return [](double) { return RigidPlacement{}; };
   Motion motion = *m;
   return [motion](double t) {
-    const Vec3 d = motion.at(t);
-    return Eigen::Vector3d(d[0], d[1], d[2]);
+    RigidPlacement placement;
+    const Mat3 R = motion.rotation(t);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) placement.rotation(i, j) = R[i][j];
+    if (motion.rotate) placement.center = Eigen::Vector3d(motion.rotate->center.data());
+    const Vec3 T = motion.at(t);
+    placement.translation = Eigen::Vector3d(T.data());
+    return placement;
   };
 }
 
@@ -168,14 +178,18 @@ std::unique_ptr<EnergyTerm> penalty_term(const std::string& name,
     for (EdgeSample& s :
          edge_samples(disc, layout, select_curve(disc, *curve, frame, where.text))) {
       PenaltySample p{s.point.nodes, s.point.basis.w[kValue], {}, beta * s.weight, 0.0};
-      if (clamp) p.conormal = s.conormal, p.rotation_weight = beta_rot * s.weight;
+      p.reference = s.point.x;
+      if (clamp) {
+        p.conormal = s.conormal, p.rotation_weight = beta_rot * s.weight;
+        p.reference_conormal = s.conormal_direction;
+      }
       samples.push_back(std::move(p));
     }
   } else {
     const SurfacePoint sp = resolve_point(disc, where, frame);
     if (layout.face_owner(sp.face) == layout.rank()) {
       LocalPoint lp = local_point(disc, layout, sp);
-      samples.push_back({lp.nodes, lp.basis.w[kValue], {}, beta, 0.0});
+      samples.push_back({lp.nodes, lp.basis.w[kValue], {}, beta, 0.0, lp.x});
     }
   }
   return std::make_unique<PenaltyTerm>(name, std::move(samples), components,

@@ -127,9 +127,9 @@ EnergyScale energy_scale(const Scene& scene, double area, double size) {
     if (const auto* p = std::get_if<PointLoadEffect>(&e)) force += norm(p->force);
     if (const auto* p = std::get_if<PressureEffect>(&e)) pressure += std::abs(p->pressure);
     if (const auto* d = std::get_if<DirichletEffect>(&e); d && d->motion)
-      motion = std::max(motion, norm(d->motion->translate));
+      motion = std::max(motion, d->motion->reach(size));
     if (const auto* c = std::get_if<ClampEffect>(&e); c && c->motion)
-      motion = std::max(motion, norm(c->motion->translate));
+      motion = std::max(motion, c->motion->reach(size));
   }
   double distance = size + motion;
   const double mass = m.density * area;

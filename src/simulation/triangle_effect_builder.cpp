@@ -147,11 +147,12 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
       if (std::holds_alternative<PointSelection>(d->where.selection)) {
         const int v =
             select_vertex(disc, std::get<PointSelection>(d->where.selection), frame, d->where.text);
-        if (owns(layout, v)) samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta, 0.0});
+        if (owns(layout, v))
+          samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta, 0.0, disc.points()[v]});
       } else {
         for (const auto& [v, w] :
              vertex_weights(disc, layout, curve_vertices(disc, d->where, frame)))
-          samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0});
+          samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0, disc.points()[v]});
       }
       auto term = std::make_unique<PenaltyTerm>(name, std::move(samples), d->components,
                                                 motion_function(d->motion));
@@ -167,7 +168,7 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
                          "vertices)");
       std::vector<PenaltySample> samples;
       for (const auto& [v, w] : vertex_weights(disc, layout, vertices))
-        samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0});
+        samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0, disc.points()[v]});
       problem->add_term(std::make_unique<PenaltyTerm>(name, std::move(samples),
                                                       std::array<bool, 3>{true, true, true},
                                                       motion_function(c->motion)));

@@ -65,14 +65,18 @@ struct TestProblem {
       scene.effects.push_back(PointLoadEffect{where("point(0.3, 0.6)"), {0, 0, -1}, true});
     }
     if (kind == "dirichlet" || kind == "all") {
-      Motion m{{0.2, 0.0, 0.1}, {0.0, 2.0}};
+      // A translation with a rotation about a skew axis through the left side.
+      Motion m{{0.2, 0.0, 0.1}, {0.0, 2.0}, Rotation{{0, 1, 1}, {0, 0.5, 0}, 0.8}};
       scene.effects.push_back(
           DirichletEffect{where("boundary(left)"), {true, false, true}, m, 5.0, {}});
       scene.effects.push_back(
           DirichletEffect{where("corner(top-right)"), {true, true, true}, {}, 5.0, 1e4});
     }
-    if (kind == "clamp" || kind == "all")
-      scene.effects.push_back(ClampEffect{where("boundary(bottom)"), {}, 5.0, {}, {}});
+    if (kind == "clamp" || kind == "all") {
+      // Turning about the bottom side's own line: its points stay, its slope turns.
+      Motion m{{0.0, 0.0, 0.0}, {0.0, 2.0}, Rotation{{1, 0, 0}, {0.5, 0, 0}, 0.6}};
+      scene.effects.push_back(ClampEffect{where("boundary(bottom)"), m, 5.0, {}, {}});
+    }
     CageFrame frame = CageFrame::from(scene.geometry);
     if (kind == "extraordinary") {
       cage = add_ghost_ring(fan_cage(5));

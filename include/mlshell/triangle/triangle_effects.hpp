@@ -9,7 +9,8 @@
 //   pressure   −s(t) p (V(x) − V(X)), V the volume enclosed by a closed surface (its Hessian
 //              assembled, and projected, per edge)
 //   clamp      hinges between each clamped boundary edge's triangle and a virtual triangle,
-//              its rest mirror through the edge midpoint, moved with the clamp's motion: the
+//              its rest mirror through the edge midpoint, placed by the clamp's rigid motion φ_t
+//              (turned with its rotation, so the clamped slope turns too): the
 //              boundary keeps its rest slope (θ̄ = 0) with the shell's own bending stiffness;
 //              with midedge bending the clamp instead fixes the midedge normal of each clamped
 //              edge: the clamped triangle's element with that edge held minus the same element
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "mlshell/energy_term.hpp"
+#include "mlshell/prescribed_motion.hpp"
 #include "mlshell/triangle/hinge_bending.hpp"
 #include "mlshell/triangle/membrane.hpp"
 #include "mlshell/triangle/midedge_bending.hpp"
@@ -176,13 +178,13 @@ class PressureTerm final : public EnergyTerm {
 };
 
 /// The rotation part of a clamp: one hinge per clamped boundary edge with a virtual fourth
-/// vertex X₀ + X₁ − X₂ + d(t).
+/// vertex φ_t(X₀ + X₁ − X₂), the rest mirror placed by the clamp's rigid motion.
 class ClampHingeTerm final : public EnergyTerm {
  public:
   /// `edges`: boundary edges (v0 → v1 in their triangle's direction) to clamp.
   ClampHingeTerm(std::string name, const TriangleDiscretization& disc, const ParallelLayout& layout,
                  const std::vector<std::array<int, 2>>& edges, double stiffness,
-                 std::function<Eigen::Vector3d(double)> motion);
+                 PrescribedMotion motion);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
 
@@ -194,11 +196,11 @@ class ClampHingeTerm final : public EnergyTerm {
     HingeRest rest;
   };
   std::vector<Hinge> hinges_;
-  std::function<Eigen::Vector3d(double)> motion_;
+  PrescribedMotion motion_;
 };
 
 /// The rotation part of a clamp with midedge bending: for each clamped triangle, its midedge
-/// element with the clamped edges' normals held by virtual vertices X_j + X_k − X_i + d(t),
+/// element with the clamped edges' normals held by virtual vertices φ_t(X_j + X_k − X_i),
 /// minus the elastic term's element of the same triangle with those edges free. Two clamp
 /// effects on one corner triangle each add their own difference: both edges are held, but the
 /// sum differs from the element with both held by a cross term.
@@ -207,8 +209,7 @@ class MidedgeClampTerm final : public EnergyTerm {
   /// `edges`: boundary edges (v0 → v1 in their triangle's direction) to clamp.
   MidedgeClampTerm(std::string name, const TriangleDiscretization& disc,
                    const ParallelLayout& layout, const std::vector<std::array<int, 2>>& edges,
-                   const TriangleShellParameters& params,
-                   std::function<Eigen::Vector3d(double)> motion);
+                   const TriangleShellParameters& params, PrescribedMotion motion);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
 
@@ -220,7 +221,7 @@ class MidedgeClampTerm final : public EnergyTerm {
     MidedgeRest rest;           ///< held minus free
   };
   std::vector<Element> elements_;
-  std::function<Eigen::Vector3d(double)> motion_;
+  PrescribedMotion motion_;
 };
 
 }  // namespace mlshell

@@ -7,7 +7,7 @@ namespace mlshell {
 ClampHingeTerm::ClampHingeTerm(std::string name, const TriangleDiscretization& disc,
                                const ParallelLayout& layout,
                                const std::vector<std::array<int, 2>>& edges, double stiffness,
-                               std::function<Eigen::Vector3d(double)> motion)
+                               PrescribedMotion motion)
     : EnergyTerm(std::move(name)), motion_(std::move(motion)) {
   const auto& X = disc.points();
   const TriangleTopology& topo = disc.topology();
@@ -32,7 +32,7 @@ ClampHingeTerm::ClampHingeTerm(std::string name, const TriangleDiscretization& d
 PetscErrorCode ClampHingeTerm::add(const std::vector<double>& u, CompensatedSum& energy,
                                    std::vector<double>* grad, Mat hess) const {
   PetscFunctionBeginUser;
-  const Eigen::Vector3d d = motion_ ? motion_(time_) : Eigen::Vector3d::Zero();
+  const RigidPlacement placement = motion_ ? motion_(time_) : RigidPlacement{};
   Vector12 g;
   Matrix12 H;
   std::vector<PetscInt> nodes(3);
@@ -41,7 +41,7 @@ PetscErrorCode ClampHingeTerm::add(const std::vector<double>& u, CompensatedSum&
     for (int k = 0; k < 3; ++k)
       x[k] = h.reference[k] +
              Eigen::Vector3d(u[3 * h.nodes[k]], u[3 * h.nodes[k] + 1], u[3 * h.nodes[k] + 2]);
-    const double e = hinge_bending(h.rest, x[0], x[1], x[2], h.virtual_vertex + d,
+    const double e = hinge_bending(h.rest, x[0], x[1], x[2], placement.position(h.virtual_vertex),
                                    grad ? &g : nullptr, hess ? &H : nullptr);
     energy.add(e);
     if (!std::isfinite(e)) continue;

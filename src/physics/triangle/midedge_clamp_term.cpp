@@ -8,8 +8,7 @@ namespace mlshell {
 MidedgeClampTerm::MidedgeClampTerm(std::string name, const TriangleDiscretization& disc,
                                    const ParallelLayout& layout,
                                    const std::vector<std::array<int, 2>>& edges,
-                                   const TriangleShellParameters& params,
-                                   std::function<Eigen::Vector3d(double)> motion)
+                                   const TriangleShellParameters& params, PrescribedMotion motion)
     : EnergyTerm(std::move(name)), motion_(std::move(motion)) {
   const auto& X = disc.points();
   const TriangleTopology& topo = disc.topology();
@@ -51,15 +50,15 @@ MidedgeClampTerm::MidedgeClampTerm(std::string name, const TriangleDiscretizatio
 PetscErrorCode MidedgeClampTerm::add(const std::vector<double>& u, CompensatedSum& energy,
                                      std::vector<double>* grad, Mat hess) const {
   PetscFunctionBeginUser;
-  const Eigen::Vector3d d = motion_ ? motion_(time_) : Eigen::Vector3d::Zero();
+  const RigidPlacement placement = motion_ ? motion_(time_) : RigidPlacement{};
   std::array<Eigen::Vector3d, 6> x;
   for (const Element& e : elements_) {
     for (int k = 0; k < 6; ++k) {
       x[k] = e.reference[k];
       if (e.nodes[k] >= 0)
         x[k] += Eigen::Vector3d(u[3 * e.nodes[k]], u[3 * e.nodes[k] + 1], u[3 * e.nodes[k] + 2]);
-      else if (e.moves[k])
-        x[k] += d;
+      else if (e.moves[k])  // the virtual vertex follows the motion rigidly
+        x[k] = placement.position(e.reference[k]);
     }
     PetscCall(add_midedge_element(e.rest, x, e.nodes, projects_hessian(), energy, grad, hess));
   }

@@ -3,6 +3,8 @@
 // elastic one), and closed-form values of the inertia and load terms under a rigid translation.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -132,6 +134,55 @@ TEST(EnergyTerms, EachTermsDerivativesMatchFiniteDifferencesOnItsOwnScale) {
   for (const char* expected :
        {"inertia", "gravity", "surface_load", "line_load", "point_load", "dirichlet", "clamp"})
     EXPECT_NE(std::find(seen.begin(), seen.end(), expected), seen.end()) << expected;
+}
+
+// Catmull–Clark is affine invariant: moving every control point by a rigid motion moves the
+// limit surface by it. A support whose motion is that rigid motion then costs nothing, its
+// points and (for the clamp) its slope across the boundary both turned, and costs something
+// halfway through the motion or without it.
+TEST(EnergyTerms, SupportsCostNothingAlongTheirOwnRigidMotions) {
+  TestProblem tp("all", PETSC_COMM_SELF);
+  tp.problem->set_time(2.0);  // the motions are complete
+  const int n = tp.layout->num_local_points();
+  std::vector<double> X(3 * n);
+  ASSERT_EQ(3 * tp.disc->mesh().points.size(), static_cast<size_t>(tp.disc->num_dofs()));
+  {
+    Vec x;
+    tp.layout->create_vector(&x);
+    std::vector<double> natural;
+    if (tp.layout->rank() == 0)
+      for (const Point3& p : tp.disc->mesh().points)
+        for (int c = 0; c < 3; ++c) natural.push_back(p[c]);
+    tp.layout->scatter_natural(natural, x);
+    X = local(tp, x);
+    VecDestroy(&x);
+  }
+  for (const auto& [index, name] : {std::pair<size_t, const char*>{5, "dirichlet"},
+                                    std::pair<size_t, const char*>{7, "clamp"}}) {
+    SCOPED_TRACE(name);
+    const auto& effect = tp.scene.effects[index];
+    const Motion& motion = std::holds_alternative<DirichletEffect>(effect)
+                               ? *std::get<DirichletEffect>(effect).motion
+                               : *std::get<ClampEffect>(effect).motion;
+    ASSERT_TRUE(motion.rotate);
+    // The full motion, written out: R(θ)(X − c) + c + T − X.
+    const Eigen::Vector3d axis(motion.rotate->axis.data()), c(motion.rotate->center.data()),
+        T(motion.translate.data());
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(motion.rotate->angle, axis.normalized()).toRotationMatrix();
+    std::vector<double> u(3 * n);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d Xi(X[3 * i], X[3 * i + 1], X[3 * i + 2]);
+      const Eigen::Vector3d d = R * (Xi - c) + c + T - Xi;
+      for (int k = 0; k < 3; ++k) u[3 * i + k] = d[k];
+    }
+    const EnergyTerm& term = *tp.problem->terms()[index + 1];  // after the elastic term
+    ASSERT_EQ(term.name(), name);
+    EXPECT_NEAR(evaluate(term, u).f, 0.0, 1e-18);
+    tp.problem->set_time(1.0);  // halfway: the full turn is too far
+    EXPECT_GT(evaluate(term, u).f, 1e-3);
+    tp.problem->set_time(2.0);
+  }
 }
 
 // A rigid translation t of every control point translates the limit surface by t (Catmull–Clark

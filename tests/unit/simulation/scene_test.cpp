@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 
@@ -374,6 +375,38 @@ TEST(SceneParse, EffectsMayBeEmptyOrAbsent) {
   EXPECT_TRUE(parse_scene(dir.write("null.yaml", text.str())).effects.empty());
 }
 
+TEST(SceneParse, MotionsRotateTranslateOrBoth) {
+  ScratchDir dir;
+  SceneText text;
+  text.effects =
+      "effects:\n"
+      "  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], center: [0, 0.5, 0], "
+      "angle: 1.5707963267948966}, over: [0, 2]}}\n"
+      "  - dirichlet:\n      where: boundary(right)\n      motion:\n        translate: [0, 0, "
+      "0.1]\n"
+      "        rotate: {axis: [0, 0, 2], center: [1, 0, 0], angle: -0.5}\n        over: [1, 3]\n"
+      "  - dirichlet: {where: boundary(top), motion: {translate: [0.1, 0, 0], over: [0, 1]}}\n";
+  const Scene scene = parse_scene(dir.write("motions.yaml", text.str()));
+  ASSERT_EQ(scene.effects.size(), 3u);
+  // rotate alone: no translation.
+  const auto& turned = *as<ClampEffect>(scene.effects[0]).motion;
+  expect_vec3(turned.translate, {0, 0, 0});
+  ASSERT_TRUE(turned.rotate);
+  expect_vec3(turned.rotate->axis, {1, 0, 0});
+  expect_vec3(turned.rotate->center, {0, 0.5, 0});
+  EXPECT_DOUBLE_EQ(turned.rotate->angle, std::numbers::pi / 2);
+  // Both: the axis as written (normalised only when the rotation is formed).
+  const auto& both = *as<DirichletEffect>(scene.effects[1]).motion;
+  expect_vec3(both.translate, {0, 0, 0.1});
+  ASSERT_TRUE(both.rotate);
+  expect_vec3(both.rotate->axis, {0, 0, 2});
+  expect_vec3(both.rotate->center, {1, 0, 0});
+  EXPECT_DOUBLE_EQ(both.rotate->angle, -0.5);
+  EXPECT_EQ(both.over, (std::array<double, 2>{1.0, 3.0}));
+  // translate alone: no rotation, as before.
+  EXPECT_FALSE(as<DirichletEffect>(scene.effects[2]).motion->rotate);
+}
+
 TEST(SceneParse, BlockStyleWhereTakesPointWithoutQuotes) {
   ScratchDir dir;
   SceneText text;
@@ -600,6 +633,15 @@ TEST(SceneErrors, OutOfRangeValues) {
                      {"material.poisson_ratio: must be in (-1, 0.5); got '0.5'"});
   expect_bad_fixture("motion_backwards.yaml", 10,
                      {"effects[2].clamp.motion.over: t0 must be <= t1; got '[10, 2]'"});
+}
+
+TEST(SceneErrors, RotationWithAZeroAxisOrAnUnknownKey) {
+  expect_bad_fixture("motion_rotate_zero_axis.yaml", 12,
+                     {"effects[2].clamp.motion.rotate.axis: the axis must be a non-zero vector",
+                      "got '[0, 0, 0]'", "expected a direction such as [1, 0, 0]"});
+  expect_bad_fixture("motion_rotate_unknown_key.yaml", 11,
+                     {"effects[1].dirichlet.motion.rotate.degrees: angles are given in radians, "
+                      "under `angle`; got '90'"});
 }
 
 TEST(SceneErrors, BadListEntries) {
@@ -855,6 +897,36 @@ TEST(SceneErrors, InlineDefects) {
        with([](SceneText& t) { t.extra = "probes: {\"a,b\": {at: [0, 0, 0]}}\n"; }),
        5,
        {"probes.a,b: probe names may hold only", "got 'a,b'"}},
+      {"motion_without_translate_or_rotate",
+       with([](SceneText& t) {
+         t.effects = "effects:\n  - dirichlet: {where: boundary(left), motion: {over: [0, 1]}}\n";
+       }),
+       4,
+       {"effects[0].dirichlet.motion: a motion needs `translate`, `rotate` or both"}},
+      {"rotation_without_angle",
+       with([](SceneText& t) {
+         t.effects =
+             "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
+             "center: [0, 0, 0]}, over: [0, 1]}}\n";
+       }),
+       4,
+       {"effects[0].clamp.motion.rotate.angle: required key is missing", "radians"}},
+      {"rotation_infinite_angle",
+       with([](SceneText& t) {
+         t.effects =
+             "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
+             "center: [0, 0, 0], angle: .inf}, over: [0, 1]}}\n";
+       }),
+       4,
+       {"effects[0].clamp.motion.rotate.angle: must be a finite number", "got '.inf'"}},
+      {"rotation_centre_nan",
+       with([](SceneText& t) {
+         t.effects =
+             "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
+             "center: [0, .nan, 0], angle: 1}, over: [0, 1]}}\n";
+       }),
+       4,
+       {"effects[0].clamp.motion.rotate.center[1]: must be a finite number"}},
       {"missing_time",
        with([](SceneText& t) { t.time = ""; }),
        1,

@@ -4,6 +4,8 @@
 // quasistatic integrator's equilibrium.
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <filesystem>
+#include <numbers>
 
 #include "mlshell/effects.hpp"
 #include "mlshell/step_solver.hpp"
@@ -457,6 +459,95 @@ TEST(TriangleShell, ClampMovesWithItsMotionAndResistsRotationWithTheBendingStiff
   }
   EXPECT_NEAR(energy(penalty, rotated), 0.0, 1e-20);  // the clamped edge stays in place
   EXPECT_NEAR(energy(rotation, rotated), 6.0 * k * phi * phi, 1e-12 * k);
+}
+
+/// u of the rigid motion X ↦ R_x(φ)(X − c) + c: a turn by φ about the line through c along x.
+std::vector<double> turned_about_x(const TriangleDiscretization& disc, double phi,
+                                   const Point3& c) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  std::vector<double> u(3 * disc.num_points());
+  for (int i = 0; i < disc.num_points(); ++i) {
+    const Point3& X = disc.points()[i];
+    const Point3 d = R * (X - c) + c - X;
+    for (int k = 0; k < 3; ++k) u[3 * i + k] = d[k];
+  }
+  return u;
+}
+
+TEST(TriangleShell, ClampTurnsItsFrameWithARotatingMotion) {
+  // A 2 × 1 rectangle clamped on the left, whose motion turns it by π/2 about the line through
+  // (0, 0.5, 0) along x. Following the motion rigidly costs nothing, with hinge and midedge
+  // bending: the clamp's virtual vertices turn with the motion, so the clamped slope does too.
+  // Held at its rest slope instead (the same translation and no rotation), the rotation terms
+  // would cost the full quarter turn of every clamped hinge.
+  for (const char* bending : {"hinge", "midedge"}) {
+    SCOPED_TRACE(bending);
+    const Scene scene = triangle_scene(
+        "clamp_rotate",
+        std::string("geometry: {mesh: {generator: rectangle, size: [2, 1], faces: [4, 2]}}\n") +
+            "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, "
+            "thickness: 0.01, volume_density: 500, bending: " +
+            bending + "}\n" +
+            "effects:\n  - clamp: {where: boundary(left), motion: {rotate: {axis: [1, 0, 0], "
+            "center: [0, 0.5, 0], angle: 1.5707963267948966}, over: [0, 1]}}\n"
+            "time: {dt: 1, steps: 1}\n");
+    TriangleProblem tp(scene, PETSC_COMM_SELF);  // at t = 1: the quarter turn is complete
+    const EnergyTerm& penalty = *tp.problem->terms()[1];
+    const EnergyTerm& rotation = *tp.problem->terms()[2];
+    ASSERT_EQ(rotation.name(), "clamp_rotation");
+    auto energy = [&](const EnergyTerm& t, const std::vector<double>& u) {
+      CompensatedSum e;
+      PetscCallAbort(PETSC_COMM_SELF, t.add(u, e, nullptr, nullptr));
+      return e.value();
+    };
+    const std::vector<double> turned =
+        turned_about_x(tp.disc(), std::numbers::pi / 2, Point3(0, 0.5, 0));
+    EXPECT_NEAR(energy(penalty, turned), 0.0, 1e-20);
+    EXPECT_NEAR(energy(rotation, turned), 0.0, 1e-18);
+    // Not turned: the penalty and the rotation both resist.
+    const std::vector<double> rest(turned.size(), 0.0);
+    EXPECT_GT(energy(penalty, rest), 1.0);
+    EXPECT_GT(energy(rotation, rest), 1e-3);
+    expect_derivatives(tp, rotation, random_displacement(turned.size(), 0.05, 7), 1e-6,
+                       "clamp rotation, turned");
+  }
+}
+
+TEST(TriangleShell, AStripTwistedByItsClampedEndEndsAtTheRotatedPositions) {
+  // A 1 × 0.2 strip clamped at both ends; the right end turns by π/2 about the strip's long
+  // axis in one quasistatic step. The right end's vertices end where the rotation takes them,
+  // to the penalty's accuracy (the default β lets the ends go by 0.8 mm under the twisting
+  // moment; β = 1e9, about 1e4 times the default, by 0.1 µm), and the left end stays.
+  const Scene scene = triangle_scene(
+      "twist",
+      std::string("geometry: {mesh: {generator: rectangle, size: [1, 0.2], faces: [10, 2]}}\n") +
+          kMaterial +
+          "effects:\n  - clamp: {where: boundary(left), penalty: 1e9}\n"
+          "  - clamp: {where: boundary(right), penalty: 1e9, motion: {rotate: {axis: [1, 0, 0], "
+          "center: [1, 0.1, 0], angle: 1.5707963267948966}, over: [0, 1]}}\n"
+          "time: {dt: 1, steps: 1, integrator: quasistatic}\n");
+  const SolvedScene solved = solve_scene(
+      scene, PETSC_COMM_SELF, (std::filesystem::temp_directory_path() / "mlshell_twist").string());
+  ASSERT_EQ(solved.status, 0);
+  const auto& disc =
+      static_cast<const TriangleDiscretization&>(solved.simulation->discretization());
+  const std::vector<double> turned = turned_about_x(disc, std::numbers::pi / 2, Point3(1, 0.1, 0));
+  int right = 0, left = 0;
+  for (int i = 0; i < disc.num_points(); ++i) {
+    const Point3& X = disc.points()[i];
+    const Point3 u(solved.displacement[3 * i], solved.displacement[3 * i + 1],
+                   solved.displacement[3 * i + 2]);
+    if (X[0] == 1.0) {
+      ++right;
+      const Point3 expected(turned[3 * i], turned[3 * i + 1], turned[3 * i + 2]);
+      EXPECT_LT((u - expected).norm(), 1e-6) << "vertex " << i << " at " << X.transpose();
+    } else if (X[0] == 0.0) {
+      ++left;
+      EXPECT_LT(u.norm(), 1e-6) << "vertex " << i;
+    }
+  }
+  EXPECT_EQ(right, 3);
+  EXPECT_EQ(left, 3);
 }
 
 TEST(TriangleShell, ProjectedNewtonAssemblesAPositiveSemiDefiniteHessian) {
