@@ -13,24 +13,11 @@
 #include "mlshell/step_solver.hpp"
 #include "mlshell/trust_region.hpp"
 #include "physics_fixtures.hpp"
+#include "solvers/solver_test_support.hpp"
 
 using namespace mlshell;
 
 namespace {
-
-/// Sets PETSc options for the lifetime of the object.
-struct ScopedOptions {
-  std::vector<std::string> names;
-  explicit ScopedOptions(std::initializer_list<std::pair<const char*, const char*>> options) {
-    for (const auto& [name, value] : options) {
-      PetscOptionsSetValue(nullptr, name, value);
-      names.emplace_back(name);
-    }
-  }
-  ~ScopedOptions() {
-    for (const auto& n : names) PetscOptionsClearValue(nullptr, n.c_str());
-  }
-};
 
 Scene example(const char* file, int refine, int steps) {
   Scene s = parse_scene(std::filesystem::path(MLSHELL_SOURCE_DIR) / "examples" / file);
@@ -80,18 +67,6 @@ struct RestingTrampoline {
     VecDestroy(&v);
   }
 };
-
-double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
-  return d;
-}
-
-double max_abs(const std::vector<double>& a) {
-  double m = 0.0;
-  for (double x : a) m = std::max(m, std::abs(x));
-  return m;
-}
 
 }  // namespace
 

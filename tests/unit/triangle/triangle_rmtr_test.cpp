@@ -9,25 +9,12 @@
 #include <string>
 
 #include "mlshell/step_solver.hpp"
+#include "solvers/solver_test_support.hpp"
 #include "triangle/triangle_fixtures.hpp"
 
 using namespace mlshell;
 
 namespace {
-
-/// Sets PETSc options for the lifetime of the object.
-struct ScopedOptions {
-  std::vector<std::string> names;
-  explicit ScopedOptions(std::initializer_list<std::pair<const char*, const char*>> options) {
-    for (const auto& [name, value] : options) {
-      PetscOptionsSetValue(nullptr, name, value);
-      names.emplace_back(name);
-    }
-  }
-  ~ScopedOptions() {
-    for (const auto& n : names) PetscOptionsClearValue(nullptr, n.c_str());
-  }
-};
 
 const char* kMaterial =
     "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, thickness: 0.01, "
@@ -91,18 +78,6 @@ Outcome solve(const Scene& scene, MPI_Comm comm, const std::string& tag) {
   solved.simulation->problem().objective(solved.simulation->displacement(), &out.energy, nullptr);
   std::filesystem::remove_all(dir);
   return out;
-}
-
-double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
-  return d;
-}
-
-double max_abs(const std::vector<double>& a) {
-  double m = 0.0;
-  for (double x : a) m = std::max(m, std::abs(x));
-  return m;
 }
 
 }  // namespace
