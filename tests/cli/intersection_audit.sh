@@ -60,6 +60,37 @@ grep -q "folded.yaml: geometry.mesh: the input surface intersects itself: [0-9]*
   folded.log || die "folded sheet: the message does not name the file and the triangles: $(cat folded.log)"
 [[ ! -e out/folded/summary.json ]] || die "folded sheet: a summary.json was written"
 
+echo "check: a strip coiling through itself stops at the frame (exit 5, status intersection)"
+cat >coil.yaml <<'YAML'
+name: coil
+geometry:
+  mesh: {generator: rectangle, size: [0.5, 0.05], faces: [60, 4]}
+material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.45, thickness: 0.001, volume_density: 1100}
+effects:
+  - clamp: {where: boundary(left)}
+  - clamp:
+      where: boundary(right)
+      motion:
+        rotate: {axis: [1, 0, 0], center: [0.5, 0.025, 0], angle: 18.84955592153876}
+        translate: [-0.35, 0, 0]
+        over: [0, 6]
+time: {dt: 1.0, steps: 6, integrator: quasistatic}
+output: {dir: out/coil, formats: [obj]}
+YAML
+sed -i "/^time:/a solver: {options_file: $SRC/petsc-options/projected-newton.yaml}" coil.yaml
+rc=0
+timeout 300 "$MLSHELL" coil.yaml -mlshell_audit_intersections >coil.log 2>&1 || rc=$?
+[[ $rc -eq 5 ]] || die "coil: exit $rc, expected 5: $(tail -3 coil.log)"
+grep -q "^mlshell: frame [0-9]* (t = .*) intersects itself: [0-9]* pair(s) of triangles intersect" coil.log ||
+  die "coil: no message naming the frame: $(tail -3 coil.log)"
+$PY - out/coil <<'PY' || die "coil: summary.json"
+import json, sys
+s = json.load(open(sys.argv[1] + "/summary.json"))
+assert s["status"] == "intersection", s["status"]
+a = s["intersection_audit"]
+assert a["intersecting_pairs"] > 0 and a["frames"] == s["steps"] + 1, (a, s["steps"])
+PY
+
 echo "check: without the option nothing is audited"
 "$MLSHELL" folded.yaml -mlshell_evaluate >plain.log 2>&1 || die "exit $?: $(tail -3 plain.log)"
 $PY -c "import json; s = json.load(open('out/folded/summary.json')); assert s.get('intersection_audit') is None, s['intersection_audit']" ||

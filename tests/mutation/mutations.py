@@ -541,6 +541,10 @@ MUTATIONS = [
      "    if (pairs > 0)\n      throw SceneError(scene_.file.string() + \": geometry.mesh: the \" +",
      "    if (false)\n      throw SceneError(scene_.file.string() + \": geometry.mesh: the \" +",
      "an input surface that intersects itself is simulated", ()),
+    ("audit-frame-not-stopping", "src/simulation/simulation.cpp",
+     "    if (!audit_message_.empty()) {  // write_frame's audit found intersecting triangles",
+     "    if (false) {  // write_frame's audit found intersecting triangles",
+     "a run goes on past a written frame whose triangles intersect", ()),
     ("collapse-chart-fold-unchecked", "mesh/decimation/collapse_chart.cpp",
      "  bool ok = place_kept_lscm() && after_valid();", "  bool ok = place_kept_lscm();",
      "a collapse whose LSCM after chart folds keeps it (points snapped across the fold, no "
