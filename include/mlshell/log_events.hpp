@@ -25,4 +25,13 @@ class LogEventScope {
   PetscLogEvent event_;
 };
 
+/// A -log_view stage for the lifetime of the object (also when an exception leaves the scope).
+class LogStageScope {
+ public:
+  explicit LogStageScope(PetscLogStage stage) { PetscLogStagePush(stage); }
+  ~LogStageScope() { PetscLogStagePop(); }
+  LogStageScope(const LogStageScope&) = delete;
+  LogStageScope& operator=(const LogStageScope&) = delete;
+};
+
 }  // namespace mlshell

@@ -19,6 +19,10 @@ namespace mlshell {
 
 class ProxyEnergy final : public Objective {
  public:
+  /// The gradient objective() returns: the exact J_P(u)ᵀ∇Ψ, or paper 2's eq. (10), Uᵀ∇Ψ with the
+  /// prolongation's offset frozen at u (the intrinsic part's transpose alone; the same as the
+  /// exact one for a linear transfer or where the offsets are zero).
+  enum class Gradient { kExact, kFrozenOffset };
   /// `finest`: the finest level's problem (it must outlive this); `direct`: P^l from this level
   /// to the finest; `pattern`: a matrix of this level whose pattern the Hessian must also hold
   /// (the coarse problem's own, so RMTR's Galerkin models fit too; may be null). Collective.
@@ -34,6 +38,8 @@ class ProxyEnergy final : public Objective {
   PetscReal evaluation_error() const override { return finest_.evaluation_error(); }
   PetscErrorCode create_hessian(Mat* H) const override;
   PetscErrorCode force_scale(Vec u, PetscReal* scale) override;
+  void set_gradient(Gradient gradient) { gradient_ = gradient; }
+  Gradient gradient() const { return gradient_; }
 
  private:
   Objective& finest_;
@@ -42,6 +48,7 @@ class ProxyEnergy final : public Objective {
   Mat fine_h_ = nullptr;    // the finest problem's Hessian
   Mat galerkin_ = nullptr;  // J_Pᵀ ∇²Ψ J_P
   Mat template_ = nullptr;  // the union of the Galerkin pattern and `pattern`, zero
+  Gradient gradient_ = Gradient::kExact;
 };
 
 }  // namespace mlshell

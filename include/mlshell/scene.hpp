@@ -294,9 +294,22 @@ struct InitialState {
   std::optional<std::filesystem::path> checkpoint;  ///< resolved path
 };
 
-/// `time: {dt, steps, integrator, proximal_step, max_proximal_solves}`.
+/// `time.preview`: Algorithm 1 of paper 2 (§4.5), the proxy steps of a progressive run's coarse
+/// levels. A proxy step takes at most `max_iterations` Newton iterations with a line search on the
+/// level's proxy energy, and stops early when ‖d‖₂ < √n_l ε ℓ (n_l the level's vertices, ℓ the
+/// finest mean edge length: the paper's √n_l h ε with the length h ε made relative to the mesh)
+/// or when the line search needs α < γ. A level is in equilibrium when a proxy step stops
+/// before its first iteration; it gives up after `max_steps` proxy steps past the loading.
+struct PreviewSpec {
+  int max_iterations = 5;  ///< max_iter, 1..1000
+  double tolerance = 1e-3;  ///< ε, > 0 (relative to the finest mean edge length)
+  double min_step = 1e-3;   ///< γ, in (0, 1)
+  int max_steps = 200;      ///< proxy steps per level after the loading, 1..1000000
+};
+
+/// `time: {dt, steps, integrator, proximal_step, max_proximal_solves, preview}`.
 struct TimeSpec {
-  enum class Integrator { kImplicitEuler, kQuasistatic };
+  enum class Integrator { kImplicitEuler, kQuasistatic, kProgressive };
   double dt = 1.0;  ///< > 0
   int steps = 1;    ///< >= 1
   /// implicit_euler (paper 1, with the scene's inertia effect) or quasistatic (paper 2 eq. 1:
@@ -305,7 +318,12 @@ struct TimeSpec {
   Integrator integrator = Integrator::kImplicitEuler;
   double proximal_step = 1.0;  ///< quasistatic: the artificial step h (s) of ½h⁻²‖x − xᵗ‖²_M
   int max_proximal_solves = 50;  ///< quasistatic: proximal solves per step before giving up
-  bool quasistatic() const { return integrator == Integrator::kQuasistatic; }
+  /// progressive (paper 2 §3, Alg. 1): the loading as proxy steps on the coarsest level of
+  /// geometry.hierarchy, refined level by level to the finest, solved there as quasistatic.
+  PreviewSpec preview;
+  /// Quasistatic stepping, on the finest level alone or progressively.
+  bool quasistatic() const { return integrator != Integrator::kImplicitEuler; }
+  bool progressive() const { return integrator == Integrator::kProgressive; }
 };
 
 struct Probe {

@@ -28,7 +28,9 @@
 #include "mlshell/effect_builder.hpp"
 #include "mlshell/hessian_spectrum.hpp"
 #include "mlshell/multilevel_problem.hpp"
+#include "mlshell/output_files.hpp"
 #include "mlshell/parallel_layout.hpp"
+#include "mlshell/proxy_step.hpp"
 #include "mlshell/scene.hpp"
 #include "mlshell/step_failure.hpp"
 #include "mlshell/step_solver.hpp"
@@ -52,6 +54,14 @@ struct SimulationOptions {
   /// -mlshell_audit_intersections: every written frame of a triangle mesh is checked for
   /// intersecting triangles (exactly, CGAL); one that has any stops the run (exit 5).
   bool audit_intersections = false;
+  /// A progressive run (time.integrator progressive, progressive_run.cpp):
+  /// -mlshell_progressive_stop_level k ends it after level k (-1: run to the finest);
+  /// -mlshell_progressive_hessian galerkin|own: the proxy steps' Newton matrix, the Galerkin
+  /// J_Pᵀ PSD(∇²Ψ) J_P or the level's own M_l/h² + PSD(∇²E_l);
+  /// -mlshell_progressive_gradient exact|frozen: J_Pᵀ∇Ψ or eq. (10)'s Uᵀ∇Ψ.
+  int progressive_stop_level = -1;
+  bool progressive_own_hessian = false;
+  bool progressive_frozen_gradient = false;
   /// -mlshell_step_solver, -mlshell_hessian_psd, ...; if empty, the simulation reads them.
   std::optional<StepSolverOptions> solver;
   /// Reads the groups "mlshell: simulation", "mlshell: measuring" and "mlshell: step solver"
@@ -61,9 +71,11 @@ struct SimulationOptions {
 };
 
 /// Exit status of a run: 0 converged, 3 a step's solver did not converge, 5 a written frame
-/// intersects itself (the intersection audit).
+/// intersects itself (the intersection audit), 130 interrupted (SIGINT or SIGTERM; a
+/// progressive run ends after its current proxy step with valid output).
 constexpr int kExitSolverFailed = 3;
 constexpr int kExitIntersection = 5;
+constexpr int kExitInterrupted = 130;
 
 struct DecimationHierarchy;
 
@@ -93,9 +105,13 @@ class Simulation {
   /// Step n's solve fell through the energy floor: says why and what to change, and returns
   /// to the state of step n − 1.
   PetscErrorCode stop_unbounded(int n, SolveReport& report);
+  struct FrameSeries;
+  /// Step n's frame of the run (if due), its audit and its checkpoint.
   PetscErrorCode write_frame(int n, double t, bool force, bool converged);
+  /// A frame of `series` at state u (audited first if `audit`).
+  PetscErrorCode write_series_frame(FrameSeries& series, Vec u, int n, double t, bool audit);
   PetscErrorCode write_frame_files(
-      int n, double t, bool xdmf, bool obj,
+      FrameSeries& series, Vec u, int n, double t, bool xdmf, bool obj,
       const std::vector<std::pair<std::string, std::vector<double>>>& fields);
   PetscErrorCode write_summary(const std::string& status, const SolveReport* last);
   PetscErrorCode estimate_condition();
@@ -147,13 +163,41 @@ class Simulation {
   static constexpr double kConstraintWarning = 0.05;
   bool all_converged_ = true;
   int steps_done_ = 0;
-  /// The intersection audit (-mlshell_audit_intersections, triangle meshes): the state u_ as
-  /// positions, its intersecting triangle pairs (on every rank) and the message naming them.
-  PetscErrorCode audit_frame(int n, double t, long* pairs, std::string* message);
+  /// The intersection audit (-mlshell_audit_intersections, triangle meshes): the state u of a
+  /// series as positions, its intersecting triangle pairs (on every rank) and the message naming
+  /// them.
+  PetscErrorCode audit_frame(const FrameSeries& series, Vec u, int n, double t, long* pairs,
+                             std::string* message);
   long audited_frames_ = 0, intersecting_pairs_ = 0;
   std::string audit_message_;  ///< of the last frame audited, if it intersects
   std::optional<SpectrumEstimate> spectrum_;
   PetscLogStage stage_setup_ = 0, stage_solve_ = 0, stage_output_ = 0;
+
+  // A progressive run (progressive_run.cpp).
+  /// What a progressive run found on each level, for the summary.
+  struct ProgressiveLevel {
+    int level = 0;
+    int vertices = 0;
+    double wall_time = 0.0;      ///< on this level (s)
+    double time_to_level = 0.0;  ///< from the start of the solve to this level's end (s)
+    int proxy_steps = 0;         ///< the finest level: its proximal solves
+    long iterations = 0, linear_iterations = 0;
+    double energy = 0.0;         ///< E at the level's result on the finest mesh (no proximal)
+    double max_violation = 0.0;  ///< of the boundary conditions there (m)
+    bool equilibrium = false;    ///< the finest level: converged
+    std::string stop;
+    Vec preview = nullptr;  ///< a coarse level's result prolonged to the finest
+  };
+  std::vector<ProgressiveLevel> progressive_levels_;
+  std::string progressive_outcome_;  ///< empty while running, then the summary's status
+  PetscErrorCode run_progressive(int* status);
+  /// Proxy steps of level l from x (in place) until it is in equilibrium (level 0: the loading
+  /// first); appends the level's record. *interrupted: SIGINT or SIGTERM on some rank.
+  PetscErrorCode preview_level(int l, Vec x, double solve_start, bool* interrupted);
+  PetscErrorCode write_progress_row(int level, int step, double time, const ProxyStepReport& r,
+                                    double wall);
+  /// The summary's `progressive` section (collective).
+  PetscErrorCode progressive_summary(Json* section);
 };
 
 /// Builds the level-0 cage with its ghost ring from the scene's geometry.

@@ -4,6 +4,7 @@
 #include "mlshell/prolongation/triangle_transfer.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 
@@ -221,6 +222,32 @@ PetscErrorCode ShellTransfer::restrict_gradient(Vec x0, Vec fine_gradient,
                                                 Vec coarse_gradient) const {
   PetscFunctionBeginUser;
   PetscCall(update_jacobians(x0));
+  PetscCall(restrict_blocks(
+      fine_gradient, coarse_gradient,
+      [&](size_t j, const Eigen::Vector3d& g) -> Eigen::Matrix<double, 9, 1> {
+        return jacobians_[j].transpose() * g;
+      }));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShellTransfer::restrict_intrinsic(Vec fine_gradient, Vec coarse_gradient) const {
+  PetscFunctionBeginUser;
+  PetscCall(restrict_blocks(
+      fine_gradient, coarse_gradient,
+      [&](size_t j, const Eigen::Vector3d& g) -> Eigen::Matrix<double, 9, 1> {
+        const Eigen::Vector3d& w = prolongation_->embedding(fine_natural_[j]).weights;
+        Eigen::Matrix<double, 9, 1> r;
+        for (int k = 0; k < 3; ++k) r.segment<3>(3 * k) = w[k] * g;
+        return r;
+      }));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ShellTransfer::restrict_blocks(
+    Vec fine_gradient, Vec coarse_gradient,
+    const std::function<Eigen::Matrix<double, 9, 1>(size_t, const Eigen::Vector3d&)>& block)
+    const {
+  PetscFunctionBeginUser;
   const PetscScalar* g;
   PetscScalar* a;
   PetscCall(VecGetArrayRead(fine_gradient, &g));
@@ -228,7 +255,7 @@ PetscErrorCode ShellTransfer::restrict_gradient(Vec x0, Vec fine_gradient,
   PetscCall(VecGetArray(gathered_, &a));
   for (size_t j = 0; j < slots_.size(); ++j) {
     const Eigen::Matrix<double, 9, 1> r =
-        jacobians_[j].transpose() * Eigen::Vector3d(g[3 * j], g[3 * j + 1], g[3 * j + 2]);
+        block(j, Eigen::Vector3d(g[3 * j], g[3 * j + 1], g[3 * j + 2]));
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) a[3 * slots_[j][k] + c] += r[3 * k + c];
   }

@@ -1,5 +1,6 @@
 #include "mlshell/proxy_energy.hpp"
 
+#include "mlshell/prolongation/triangle_transfer.hpp"
 #include "mlshell/vertex_patches.hpp"
 
 namespace mlshell {
@@ -38,7 +39,12 @@ PetscErrorCode ProxyEnergy::objective(Vec u, PetscReal* f, Vec g) {
   PetscFunctionBeginUser;
   PetscCall(direct_.prolong(u, fine_u_));
   PetscCall(finest_.objective(fine_u_, f, g ? fine_g_ : nullptr));
-  if (g) PetscCall(direct_.restrict_gradient(u, fine_g_, g));
+  if (!g) PetscFunctionReturn(0);
+  const auto* shell = dynamic_cast<const ShellTransfer*>(&direct_);
+  if (gradient_ == Gradient::kFrozenOffset && shell)
+    PetscCall(shell->restrict_intrinsic(fine_g_, g));
+  else
+    PetscCall(direct_.restrict_gradient(u, fine_g_, g));
   PetscFunctionReturn(0);
 }
 

@@ -101,14 +101,17 @@ InitialState read_initial_state(const Field& field, const fs::path& scene_dir) {
 }
 
 TimeSpec read_time(const Field& field) {
-  field.expect_keys({"dt", "steps", "integrator", "proximal_step", "max_proximal_solves"});
-  TimeSpec time{.dt = field.require("dt", "a number > 0, in s").positive_number(),
-                .steps = field.require("steps", "an integer in 1..1000000").integer_in(1, 1000000)};
+  field.expect_keys(
+      {"dt", "steps", "integrator", "proximal_step", "max_proximal_solves", "preview"});
+  TimeSpec time;
+  time.dt = field.require("dt", "a number > 0, in s").positive_number();
+  time.steps = field.require("steps", "an integer in 1..1000000").integer_in(1, 1000000);
   if (const auto integrator = field.find("integrator")) {
     const std::string kind = integrator->string();
-    integrator->check(kind == "implicit_euler" || kind == "quasistatic", "unknown integrator",
-                      "implicit_euler or quasistatic");
+    integrator->check(kind == "implicit_euler" || kind == "quasistatic" || kind == "progressive",
+                      "unknown integrator", "implicit_euler, quasistatic or progressive");
     if (kind == "quasistatic") time.integrator = TimeSpec::Integrator::kQuasistatic;
+    if (kind == "progressive") time.integrator = TimeSpec::Integrator::kProgressive;
   }
   for (const char* key : {"proximal_step", "max_proximal_solves"})
     if (const auto f = field.find(key))
@@ -117,6 +120,19 @@ TimeSpec read_time(const Field& field) {
   if (const auto h = field.find("proximal_step")) time.proximal_step = h->positive_number();
   if (const auto n = field.find("max_proximal_solves"))
     time.max_proximal_solves = n->integer_in(1, 100000);
+  if (const auto preview = field.find("preview")) {
+    preview->check(time.progressive(), "only a progressive integrator has preview parameters",
+                   "integrator: progressive, or no preview");
+    preview->expect_keys({"max_iterations", "tolerance", "min_step", "max_steps"});
+    PreviewSpec& p = time.preview;
+    if (const auto f = preview->find("max_iterations")) p.max_iterations = f->integer_in(1, 1000);
+    if (const auto f = preview->find("tolerance")) p.tolerance = f->positive_number();
+    if (const auto f = preview->find("min_step")) {
+      p.min_step = f->positive_number();
+      f->check(p.min_step < 1.0, "must be below 1", "a step length in (0, 1), e.g. 1e-3");
+    }
+    if (const auto f = preview->find("max_steps")) p.max_steps = f->integer_in(1, 1000000);
+  }
   return time;
 }
 
@@ -214,6 +230,22 @@ Scene parse_scene(const std::filesystem::path& file) {
     effects.check(false, "a quasistatic scene has no inertia effect",
                   "no inertia (time.proximal_step sets the proximal term), or integrator: "
                   "implicit_euler");
+  }
+  if (scene.time.progressive()) {
+    const Field integrator = root.require("time", "").require("integrator", "");
+    integrator.check(scene.geometry.triangles(),
+                     "a progressive run needs a triangle mesh (subdivision cages refine by RMTR)",
+                     "geometry: {mesh: {...}, hierarchy: {...}}, or integrator: quasistatic");
+    integrator.check(scene.geometry.hierarchy.has_value(),
+                     "a progressive run needs levels to refine: the scene has no "
+                     "geometry.hierarchy",
+                     "geometry.hierarchy: {levels: 3, ratio: 4}, or integrator: quasistatic");
+    if (scene.initial_state.checkpoint)
+      root.require("initial_state", "")
+          .require("checkpoint", "")
+          .fail("a progressive run starts on the coarsest level, not from a checkpoint of the "
+                "finest",
+                "no initial_state.checkpoint, or integrator: quasistatic");
   }
   if (const auto probes = root.find("probes")) scene.probes = read_probes(*probes, scene.geometry);
   if (const auto output = root.find("output")) scene.output = read_output(*output);

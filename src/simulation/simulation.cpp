@@ -25,19 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A -log_view stage for the lifetime of the object (also when an exception leaves the scope).
-class LogStageScope {
- public:
-  explicit LogStageScope(PetscLogStage stage) { PetscLogStagePush(stage); }
-  ~LogStageScope() { PetscLogStagePop(); }
-  LogStageScope(const LogStageScope&) = delete;
-  LogStageScope& operator=(const LogStageScope&) = delete;
-};
-
-}  // namespace
-
-namespace {
-
 /// The group "mlshell: simulation": what a run does and prints.
 PetscErrorCode simulation_options(MPI_Comm comm, SimulationOptions* o) {
   PetscBool evaluate = o->evaluate_only ? PETSC_TRUE : PETSC_FALSE;
@@ -116,12 +103,47 @@ PetscErrorCode measuring_options(MPI_Comm comm, SimulationOptions* o) {
   PetscFunctionReturn(0);
 }
 
+/// The group "mlshell: progressive": how a progressive run (time.integrator progressive) refines.
+PetscErrorCode progressive_options(MPI_Comm comm, SimulationOptions* o) {
+  PetscInt stop = o->progressive_stop_level;
+  char hessian[16] = "galerkin", gradient[16] = "exact";
+  PetscBool has_stop = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "mlshell: progressive", "");
+  PetscCall(PetscOptionsInt("-mlshell_progressive_stop_level",
+                            "end a progressive run after this level (0 = the coarsest preview); "
+                            "its output is complete and its summary says where it stopped",
+                            "", stop, &stop, &has_stop));
+  PetscCall(PetscOptionsString("-mlshell_progressive_hessian",
+                               "galerkin|own: the proxy steps' Newton matrix, J_P^T PSD(H_fine) "
+                               "J_P or the level mesh's own M_l/h^2 + PSD(H_l)",
+                               "", hessian, hessian, sizeof hessian, nullptr));
+  PetscCall(PetscOptionsString("-mlshell_progressive_gradient",
+                               "exact|frozen: the proxy energy's gradient, J_P^T grad Psi or "
+                               "U^T grad Psi with the offset frozen (paper 2 eq. 10)",
+                               "", gradient, gradient, sizeof gradient, nullptr));
+  PetscOptionsEnd();
+  if (has_stop && stop < 0)
+    throw SceneError("-mlshell_progressive_stop_level: must be a level >= 0; got '" +
+                     std::to_string(stop) + "'");
+  const std::string h = hessian, g = gradient;
+  if (h != "galerkin" && h != "own")
+    throw SceneError("-mlshell_progressive_hessian: must be galerkin or own; got '" + h + "'");
+  if (g != "exact" && g != "frozen")
+    throw SceneError("-mlshell_progressive_gradient: must be exact or frozen; got '" + g + "'");
+  o->progressive_stop_level = static_cast<int>(stop);
+  o->progressive_own_hessian = h == "own";
+  o->progressive_frozen_gradient = g == "frozen";
+  PetscFunctionReturn(0);
+}
+
 }  // namespace
 
 SimulationOptions SimulationOptions::from_petsc_options() {
   SimulationOptions o;
   PetscCallAbort(PETSC_COMM_WORLD, simulation_options(PETSC_COMM_WORLD, &o));
   PetscCallAbort(PETSC_COMM_WORLD, measuring_options(PETSC_COMM_WORLD, &o));
+  PetscCallAbort(PETSC_COMM_WORLD, progressive_options(PETSC_COMM_WORLD, &o));
   o.solver = StepSolverOptions::from_options(PETSC_COMM_WORLD);
   return o;
 }
@@ -179,10 +201,15 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   if (std::find(formats.begin(), formats.end(), "xdmf") != formats.end() ||
       std::find(formats.begin(), formats.end(), "obj") != formats.end()) {
     const LogEventScope event("Setup:sampling");
-    output_->sampling = std::make_unique<DistributedSampling>(
+    output_->frames.sampling = std::make_unique<DistributedSampling>(
         *disc_->sampling_part(scene_.output.samples_for(scene_.geometry.refine), rank_, size_),
         *layout_);
   }
+  output_->frames.stem = scene_.name;
+  output_->frames.obj_prefix = "frame";
+  output_->frames.disc = disc_;
+  output_->frames.layout = layout_;
+  output_->frames.problem = problem_;
   create_output_folder(comm, output_->dir);
 }
 
@@ -298,7 +325,8 @@ void Simulation::setup_triangles() {
   }
   // RMTR needs the scene on every level; other solvers only on the finest.
   const bool hierarchy = scene_.geometry.hierarchy.has_value();
-  const bool multilevel = hierarchy && options_.solver->type == "rmtr";
+  const bool multilevel =
+      hierarchy && (options_.solver->type == "rmtr" || scene_.time.progressive());
   const bool inspect = options_.hierarchy_view || !options_.hierarchy_write.empty();
   std::shared_ptr<const DecimationHierarchy> decimation;
   // Built whenever the scene declares it: a hierarchy the mesh cannot have is bad input, whatever
@@ -358,6 +386,7 @@ void Simulation::setup_triangles() {
 }
 
 Simulation::~Simulation() {
+  for (ProgressiveLevel& r : progressive_levels_) VecDestroy(&r.preview);
   VecDestroy(&u_);
   VecDestroy(&v_);
   VecDestroy(&u_last_);
@@ -469,6 +498,10 @@ PetscErrorCode Simulation::run(int* status) {
     PetscCall(VecDuplicate(u_, &u_last_));
     PetscCall(VecDuplicate(v_, &v_last_));
   }
+  if (scene_.time.progressive()) {
+    PetscCall(run_progressive(status));
+    PetscFunctionReturn(0);
+  }
   PetscCall(
       PetscPrintf(comm_,
                   "mlshell: %s: %d dofs (%d elements, h = %.4g m) on %d rank(s), %d step(s) of "
@@ -493,7 +526,8 @@ PetscErrorCode Simulation::run(int* status) {
   if (options_.audit_intersections) {  // the input first: an intersecting one is bad input
     long pairs;
     std::string message;
-    PetscCall(audit_frame(first_step_, first_step_ * scene_.time.dt, &pairs, &message));
+    PetscCall(audit_frame(output_->frames, u_, first_step_, first_step_ * scene_.time.dt, &pairs,
+                          &message));
     if (pairs > 0)
       throw SceneError(scene_.file.string() + ": geometry.mesh: the " +
                        (first_step_ == 0 ? std::string("input surface")
@@ -579,7 +613,9 @@ PetscErrorCode Simulation::run(int* status) {
   PetscCall(PetscPrintf(
       comm_, "mlshell: results in %s (summary.json%s%s%s)\n", fs::absolute(output_->dir).c_str(),
       csv ? ", steps.csv" : "",
-      output_->xdmf ? (", " + output_->xdmf->xdmf_path().filename().string()).c_str() : "",
+      output_->frames.xdmf
+          ? (", " + output_->frames.xdmf->xdmf_path().filename().string()).c_str()
+          : "",
       std::find(scene_.output.formats.begin(), scene_.output.formats.end(), "obj") !=
               scene_.output.formats.end()
           ? ", frame_*.obj"

@@ -48,20 +48,8 @@ std::string petsc_options_in_effect() {
 PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converged) {
   PetscFunctionBeginUser;
   const bool frame_due = force || n % scene_.output.every == 0;
-  if (frame_due && options_.audit_intersections && n > first_step_) {  // run() audits the start
-    long pairs;
-    PetscCall(audit_frame(n, t, &pairs, &audit_message_));
-  }
-  const auto& formats = scene_.output.formats;
-  auto has = [&](const char* f) {
-    return std::find(formats.begin(), formats.end(), f) != formats.end();
-  };
-  if (frame_due && (has("xdmf") || has("obj"))) {
-    // Per-face fields are XDMF cell data; OBJ has none.
-    std::vector<std::pair<std::string, std::vector<double>>> fields;
-    if (has("xdmf")) PetscCall(problem_->face_fields(u_, disc_->num_faces(), fields));
-    PetscCall(write_frame_files(n, t, has("xdmf"), has("obj"), fields));
-  }
+  // run() audits the start
+  if (frame_due) PetscCall(write_series_frame(output_->frames, u_, n, t, n > first_step_));
   // Only converged states are worth restarting from.
   const bool checkpoint_due = converged && scene_.output.checkpoint_every > 0 && n > 0 &&
                               n % scene_.output.checkpoint_every == 0;
@@ -79,19 +67,38 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Simulation::write_series_frame(FrameSeries& series, Vec u, int n, double t,
+                                              bool audit) {
+  PetscFunctionBeginUser;
+  if (audit && options_.audit_intersections) {
+    long pairs;
+    PetscCall(audit_frame(series, u, n, t, &pairs, &audit_message_));
+  }
+  const auto& formats = scene_.output.formats;
+  auto has = [&](const char* f) {
+    return std::find(formats.begin(), formats.end(), f) != formats.end();
+  };
+  if (!has("xdmf") && !has("obj")) PetscFunctionReturn(0);
+  // Per-face fields are XDMF cell data; OBJ has none.
+  std::vector<std::pair<std::string, std::vector<double>>> fields;
+  if (has("xdmf")) PetscCall(series.problem->face_fields(u, series.disc->num_faces(), fields));
+  PetscCall(write_frame_files(series, u, n, t, has("xdmf"), has("obj"), fields));
+  PetscFunctionReturn(0);
+}
+
 // Every rank samples its slice of the surface and formats or writes it: nothing is gathered
 // but the OBJ text.
 PetscErrorCode Simulation::write_frame_files(
-    int n, double t, bool xdmf, bool obj,
+    FrameSeries& series, Vec u, int n, double t, bool xdmf, bool obj,
     const std::vector<std::pair<std::string, std::vector<double>>>& fields) {
   PetscFunctionBeginUser;
   FrameData frame;
-  frame.cell_size = output_->sampling->cell_size();
-  PetscCall(output_->sampling->sample(u_, &frame.geometry, &frame.displacement));
-  PetscCall(output_->sampling->topology(&frame.topology));
+  frame.cell_size = series.sampling->cell_size();
+  PetscCall(series.sampling->sample(u, &frame.geometry, &frame.displacement));
+  PetscCall(series.sampling->topology(&frame.topology));
   // Per-face fields go with samplings that have one cell per face (triangle meshes); they are
   // on rank 0 (LevelProblem::face_fields), which holds the whole dataset.
-  if (output_->sampling->num_cells() == disc_->num_faces())
+  if (series.sampling->num_cells() == series.disc->num_faces())
     for (const auto& [name, values] : fields) {
       Vec v;
       PetscCall(VecCreateMPIWithArray(comm_, 1, static_cast<PetscInt>(values.size()),
@@ -107,16 +114,16 @@ PetscErrorCode Simulation::write_frame_files(
   };
   try {
     if (xdmf) {
-      if (!output_->xdmf)
-        output_->xdmf = std::make_unique<XdmfSeries>(output_->dir, scene_.name, comm_);
-      output_->xdmf->add_frame(n, t, frame);
+      if (!series.xdmf)
+        series.xdmf = std::make_unique<XdmfSeries>(output_->dir, series.stem, comm_);
+      series.xdmf->add_frame(n, t, frame);
     }
     if (obj) {
       char name[64];
-      std::snprintf(name, sizeof name, "frame_%06d.obj", n);
+      std::snprintf(name, sizeof name, "_%06d.obj", n);
       std::ostringstream c;
-      c << "mlshell " << scene_.name << " step " << n << " time " << t;
-      write_obj(comm_, output_->dir / name, frame, c.str());
+      c << "mlshell " << series.stem << " step " << n << " time " << t;
+      write_obj(comm_, output_->dir / (series.obj_prefix + name), frame, c.str());
     }
   } catch (...) {
     destroy();
@@ -126,14 +133,15 @@ PetscErrorCode Simulation::write_frame_files(
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Simulation::audit_frame(int n, double t, long* pairs, std::string* message) {
+PetscErrorCode Simulation::audit_frame(const FrameSeries& series, Vec state, int n, double t,
+                                       long* pairs, std::string* message) {
   PetscFunctionBeginUser;
-  const auto* triangles = dynamic_cast<const TriangleDiscretization*>(disc_);
+  const auto* triangles = dynamic_cast<const TriangleDiscretization*>(series.disc);
   *pairs = 0;
   message->clear();
   if (!triangles) PetscFunctionReturn(0);  // subdivision surfaces: not audited (yet)
   std::vector<double> u;
-  PetscCall(layout_->gather_natural(u_, u));
+  PetscCall(series.layout->gather_natural(state, u));
   std::array<long, 3> found{0, -1, -1};  // pairs, and the first pair's triangles
   if (rank_ == 0) {
     std::vector<Point3> x = triangles->mesh().points;
@@ -203,6 +211,8 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
   double peak_largest = 0.0, peak_sum = 0.0;
   PetscCallMPI(MPI_Reduce(&mine, &peak_largest, 1, MPI_DOUBLE, MPI_MAX, 0, comm_));
   PetscCallMPI(MPI_Reduce(&mine, &peak_sum, 1, MPI_DOUBLE, MPI_SUM, 0, comm_));
+  Json progressive;
+  if (scene_.time.progressive()) PetscCall(progressive_summary(&progressive));
   if (rank_ == 0) {
     Json::Object energy;
     double total = 0.0;
@@ -308,9 +318,10 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"dofs", Json(disc_->num_dofs())},
         {"discretization", Json(disc_->kind())},
         {"elements", Json(static_cast<long long>(disc_->elements().size()))},
-        {"integrator", Json(stepper_ ? stepper_->name()
-                                     : std::string(scene_.time.quasistatic() ? "quasistatic"
-                                                                             : "implicit_euler"))},
+        {"integrator", Json(scene_.time.progressive() ? std::string("progressive")
+                            : stepper_                  ? stepper_->name()
+                            : std::string(scene_.time.quasistatic() ? "quasistatic"
+                                                                    : "implicit_euler"))},
         {"ranks", Json(size_)},
         {"steps", Json(steps_done_)},
         {"time", Json((steps_done_ + first_step_) * scene_.time.dt)},
@@ -330,6 +341,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
         {"memory", Json(Json::Object{{"peak_rss_mib_largest_rank", Json(peak_largest)},
                                      {"peak_rss_mib_all_ranks", Json(peak_sum)},
                                      {"huge_pages", Json(huge_pages_requested())}})}};
+    if (scene_.time.progressive()) top.emplace_back("progressive", progressive);
     if (spectrum_)
       top.emplace_back(
           "hessian",

@@ -13,11 +13,22 @@
 
 namespace mlshell {
 
+/// One mesh's frames: the run's (the finest level) or one level's of a progressive run.
+struct Simulation::FrameSeries {
+  std::string stem;        ///< the series <stem>.xdmf (and its HDF5 files)
+  std::string obj_prefix;  ///< OBJ frames <obj_prefix>_%06d.obj
+  const Discretization* disc = nullptr;
+  const ParallelLayout* layout = nullptr;
+  LevelProblem* problem = nullptr;  ///< for the per-face fields
+  std::unique_ptr<DistributedSampling> sampling;  // the frames' surface, sliced over the ranks
+  std::unique_ptr<XdmfSeries> xdmf;               // on the first frame
+};
+
 /// The result files (the XDMF series on every rank, the others on rank 0).
 struct Simulation::Output {
   std::filesystem::path dir;
-  std::unique_ptr<XdmfSeries> xdmf;
-  std::unique_ptr<DistributedSampling> sampling;  // the frames' surface, sliced over the ranks
+  FrameSeries frames;                       ///< the finest level's
+  std::vector<FrameSeries> level_frames;    ///< a progressive run's, per level (finest included)
   std::unique_ptr<CsvTable> csv;
   std::vector<std::string> effect_names;
 };

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -61,6 +62,10 @@ class ShellTransfer final : public LevelTransfer {
   PetscErrorCode coarse_operator(Vec x0, Mat fine, MatReuse reuse, Mat* coarse) const override;
   double relative_cost() const override { return relative_cost_; }
 
+  /// Uᵀ g: the restriction with the intrinsic part alone, the offsets' Jacobian dropped (paper 2
+  /// eq. 10: the gradient with the offset frozen at the current state). Not J_Pᵀ g wherever the
+  /// offsets turn with the coarse triangles.
+  PetscErrorCode restrict_intrinsic(Vec fine_gradient, Vec coarse_gradient) const;
   /// J_P(X̄_c + u₀) assembled (fine rows, coarse columns, block size 3), owned by the transfer:
   /// valid until the next call. For tests and diagnostics.
   PetscErrorCode jacobian_matrix(Vec x0, Mat* J) const;
@@ -86,6 +91,11 @@ class ShellTransfer final : public LevelTransfer {
 
   /// X̄_c + u (with_rest) or u at the gathered coarse vertices.
   PetscErrorCode gather(Vec u, bool with_rest, std::vector<Point3>& values) const;
+  /// Σ_j blockᵀ-products of the owned fine vertices' gradients, added into their columns.
+  PetscErrorCode restrict_blocks(
+      Vec fine_gradient, Vec coarse_gradient,
+      const std::function<Eigen::Matrix<double, 9, 1>(size_t, const Eigen::Vector3d&)>& block)
+      const;
   /// The Jacobian blocks of the owned fine vertices at X̄_c + u₀ into jacobians_.
   PetscErrorCode update_jacobians(Vec x0) const;
 };
