@@ -130,6 +130,7 @@ PetscErrorCode Simulation::preview_level(int l, Vec x, double solve_start, bool*
   const double floor_scale = energy_scale_.total();
   double floor = NAN;
   ProxyStepReport r;
+  bool done = false;  // in equilibrium at the final load
   // Level 0 carries the loading (steps 1..T); every level then steps at the final load until a
   // proxy step takes no iteration (Alg. 1's equilibrium), at most max_steps times.
   const int loading = l == 0 ? T : 0;
@@ -146,8 +147,9 @@ PetscErrorCode Simulation::preview_level(int l, Vec x, double solve_start, bool*
     record.iterations += r.iterations;
     record.linear_iterations += r.linear_iterations;
     PetscCall(write_progress_row(l, k, t, r, MPI_Wtime() - t0));
-    const bool last = (k >= loading && r.equilibrium) || r.stop == "LINEAR_SOLVE_FAILED" ||
-                      r.stop == "NONFINITE" || r.energy < floor;
+    done = k >= loading && r.equilibrium;
+    const bool last =
+        done || r.stop == "LINEAR_SOLVE_FAILED" || r.stop == "NONFINITE" || r.energy < floor;
     *interrupted = InterruptScope::any(comm_);
     if (last || *interrupted || k % scene_.output.every == 0 ||
         k == loading + scene_.time.preview.max_steps)
@@ -156,8 +158,8 @@ PetscErrorCode Simulation::preview_level(int l, Vec x, double solve_start, bool*
     if (r.energy < floor) r.stop = "ENERGY_UNBOUNDED";
     if (last || *interrupted) break;
   }
-  record.equilibrium = r.equilibrium;
-  record.stop = *interrupted && !r.equilibrium ? "INTERRUPTED" : r.stop;
+  record.equilibrium = done;
+  record.stop = *interrupted && !done ? "INTERRUPTED" : r.stop;
   // The level's result on the finest mesh: energy, boundary conditions, the preview itself.
   PetscCall(VecDuplicate(u_, &record.preview));
   PetscCall(levels.direct_transfer(l).prolong(x, record.preview));

@@ -1,0 +1,123 @@
+// Algorithm 1 of paper 2 (ProxyNewton): each of its stops made to trigger on a separable convex
+// objective f(x) = Σ ½ a_i x_i² + ¼ x_i⁴ − b_i x_i, whose Newton matrix the test may distort:
+//   STEP_NORM       ‖d‖ below the tolerance (and a following step is in equilibrium);
+//   MAX_ITERATIONS  the iteration budget spent far from the minimum;
+//   LINE_SEARCH     a Newton matrix 1000× too soft: its steps overshoot, α < γ;
+//   LINEAR_SOLVE_FAILED  a negative definite matrix: d ascends, the step refuses it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "mlshell/proxy_step.hpp"
+
+using namespace mlshell;
+
+namespace {
+
+class Quartic final : public Objective {
+ public:
+  explicit Quartic(double matrix_scale) : scale_(matrix_scale) {}
+  PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
+    const PetscScalar* a;
+    PetscCall(VecGetArrayRead(x, &a));
+    PetscScalar* ga = nullptr;
+    if (g) PetscCall(VecGetArray(g, &ga));
+    double sum = 0.0;
+    for (int i = 0; i < kN; ++i) {
+      sum += 0.5 * coef(i) * a[i] * a[i] + 0.25 * std::pow(a[i], 4) - load(i) * a[i];
+      if (g) ga[i] = coef(i) * a[i] + std::pow(a[i], 3) - load(i);
+    }
+    if (g) PetscCall(VecRestoreArray(g, &ga));
+    PetscCall(VecRestoreArrayRead(x, &a));
+    *f = sum;
+    return 0;
+  }
+  PetscErrorCode hessian(Vec x, Mat H) override {
+    const PetscScalar* a;
+    PetscCall(VecGetArrayRead(x, &a));
+    for (PetscInt i = 0; i < kN; ++i)
+      PetscCall(MatSetValue(H, i, i, scale_ * (coef(i) + 3 * a[i] * a[i]), INSERT_VALUES));
+    PetscCall(VecRestoreArrayRead(x, &a));
+    PetscCall(MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
+    return 0;
+  }
+  static constexpr int kN = 6;
+
+ private:
+  static double coef(int i) { return 1.0 + i; }
+  static double load(int i) { return 2.0 - 0.5 * i; }
+  double scale_;
+};
+
+struct StepRun {
+  ProxyStepReport report;
+  double gradient_norm = 0.0;  // at the step's end
+};
+
+StepRun run(double matrix_scale, double start, const ProxyStepSettings& settings,
+        ProxyStepReport* second = nullptr) {
+  Quartic f(matrix_scale);
+  Vec x, g;
+  Mat H;
+  VecCreateSeq(PETSC_COMM_SELF, Quartic::kN, &x);
+  VecDuplicate(x, &g);
+  MatCreateSeqAIJ(PETSC_COMM_SELF, Quartic::kN, Quartic::kN, 1, nullptr, &H);
+  VecSet(x, start);
+  StepRun r;
+  {
+    ProxyNewton newton(f, H, [&](Vec y, Mat A) { return f.hessian(y, A); }, x);
+    PetscCallAbort(PETSC_COMM_SELF, newton.step(x, settings, &r.report));
+    if (second) PetscCallAbort(PETSC_COMM_SELF, newton.step(x, settings, second));
+  }
+  PetscReal value;
+  f.objective(x, &value, g);
+  VecNorm(g, NORM_2, &r.gradient_norm);
+  VecDestroy(&x);
+  VecDestroy(&g);
+  MatDestroy(&H);
+  return r;
+}
+
+}  // namespace
+
+TEST(ProxyNewton, StopsWhenTheNewtonStepIsBelowTheTolerance) {
+  ProxyStepReport again;
+  const StepRun r = run(1.0, 3.0, {50, 1e-10, 1e-3}, &again);
+  EXPECT_EQ(r.report.stop, "STEP_NORM");
+  EXPECT_GT(r.report.iterations, 2);
+  EXPECT_FALSE(r.report.equilibrium);
+  EXPECT_LT(r.gradient_norm, 1e-8);
+  // From the minimiser the next proxy step takes no iteration: Alg. 1's equilibrium.
+  EXPECT_EQ(again.stop, "STEP_NORM");
+  EXPECT_EQ(again.iterations, 0);
+  EXPECT_TRUE(again.equilibrium);
+}
+
+TEST(ProxyNewton, StopsAfterItsIterationBudget) {
+  const StepRun r = run(1.0, 3.0, {2, 1e-10, 1e-3});
+  EXPECT_EQ(r.report.stop, "MAX_ITERATIONS");
+  EXPECT_EQ(r.report.iterations, 2);
+  EXPECT_FALSE(r.report.equilibrium);
+  EXPECT_GT(r.gradient_norm, 1e-3);
+}
+
+TEST(ProxyNewton, StopsWhenTheLineSearchStepFallsBelowGamma) {
+  // Steps 1000 times too long: halving from α = 1 passes below γ = 0.01 before it fits.
+  const StepRun r = run(1e-3, 3.0, {50, 1e-10, 1e-2});
+  EXPECT_EQ(r.report.stop, "LINE_SEARCH");
+  EXPECT_LT(r.report.alpha, 1e-2);
+  EXPECT_EQ(r.report.iterations, 0);
+  // With γ small enough the same steps are taken, shortened, and the objective falls.
+  const StepRun patient = run(1e-3, 3.0, {3, 1e-10, 1e-6});
+  EXPECT_EQ(patient.report.iterations, 3);
+  EXPECT_GT(patient.report.alpha, 0.0);
+}
+
+TEST(ProxyNewton, RefusesADirectionThatDoesNotDescend) {
+  const StepRun r = run(-1.0, 3.0, {50, 1e-10, 1e-3});
+  EXPECT_EQ(r.report.stop, "LINEAR_SOLVE_FAILED");
+  EXPECT_EQ(r.report.iterations, 0);
+  EXPECT_FALSE(r.report.equilibrium);
+}
