@@ -56,11 +56,12 @@ struct SimulationOptions {
   bool audit_intersections = false;
   /// A progressive run (time.integrator progressive, progressive_run.cpp):
   /// -mlshell_progressive_stop_level k ends it after level k (-1: run to the finest);
-  /// -mlshell_progressive_hessian galerkin|own: the proxy steps' Newton matrix, the Galerkin
-  /// J_Pᵀ PSD(∇²Ψ) J_P or the level's own M_l/h² + PSD(∇²E_l);
+  /// -mlshell_progressive_hessian own|galerkin: the proxy steps' Newton matrix, the level's own
+  /// M_l/h² + PSD(∇²E_l) (default: as good a preview, 5.6× faster on a buckling plate) or the
+  /// Galerkin J_Pᵀ PSD(∇²Ψ) J_P (a fine Hessian and a triple product per iteration);
   /// -mlshell_progressive_gradient exact|frozen: J_Pᵀ∇Ψ or eq. (10)'s Uᵀ∇Ψ.
   int progressive_stop_level = -1;
-  bool progressive_own_hessian = false;
+  bool progressive_own_hessian = true;
   bool progressive_frozen_gradient = false;
   /// -mlshell_step_solver, -mlshell_hessian_psd, ...; if empty, the simulation reads them.
   std::optional<StepSolverOptions> solver;

@@ -5,7 +5,8 @@
 //   build/mlshell examples/plate.yaml -mlshell_evaluate
 //
 // Exit status: 0 success, 1 usage, 2 invalid input (scene, mesh, options), 3 a solver did not
-// converge (results up to that step are written and summary.json says so), 4 output failure.
+// converge (results up to that step are written and summary.json says so), 4 output failure,
+// 5 a written frame intersects itself, 130 interrupted (SIGINT, SIGTERM).
 #include <petscsys.h>
 #include <unistd.h>
 
@@ -69,6 +70,11 @@ const char* kUsage =
     "                              own: each coarse mesh's own energy)\n"
     "  -mlshell_pressure_psd       with it, project the pressure's Hessian too (per edge;\n"
     "                              default off: exact, Newton stays quadratic on a balloon)\n"
+    "  -mlshell_progressive_stop_level K  time.integrator progressive: end after level K (0 =\n"
+    "                              the coarsest preview); -mlshell_progressive_hessian\n"
+    "                              own|galerkin (the proxy steps' Newton matrix),\n"
+    "                              -mlshell_progressive_gradient exact|frozen (eq. 10),\n"
+    "                              -mlshell_preview_ksp_*/-mlshell_preview_pc_* (default MUMPS LU)\n"
     "  -options_file FILE          PETSc options from FILE (plain or .yaml); the scene may name\n"
     "                              its default one (solver.options_file), which FILE replaces;\n"
     "                              the command line's own options win over both\n"
@@ -119,7 +125,9 @@ const char* kUsage =
     "Exit status: 0 success (also -help, --help, --version; unused options are warnings),\n"
     "  1 usage (no scene), 2 invalid input (scene, mesh, option values), 3 a step did not\n"
     "  converge (results up to that step are written, summary.json says so), 4 output failure\n"
-    "  (the output folder or a result file cannot be written).\n"
+    "  (the output folder or a result file cannot be written), 5 a frame intersects itself\n"
+    "  (-mlshell_audit_intersections), 130 interrupted (SIGINT/SIGTERM; a progressive run\n"
+    "  ends after its current proxy step, with complete output of the levels done).\n"
     "\n";
 
 /// `--help` or `-h`: the usage and the scene format, without PETSc.

@@ -106,7 +106,10 @@ PetscErrorCode measuring_options(MPI_Comm comm, SimulationOptions* o) {
 /// The group "mlshell: progressive": how a progressive run (time.integrator progressive) refines.
 PetscErrorCode progressive_options(MPI_Comm comm, SimulationOptions* o) {
   PetscInt stop = o->progressive_stop_level;
-  char hessian[16] = "galerkin", gradient[16] = "exact";
+  char hessian[16], gradient[16];
+  std::snprintf(hessian, sizeof hessian, "%s", o->progressive_own_hessian ? "own" : "galerkin");
+  std::snprintf(gradient, sizeof gradient, "%s",
+                o->progressive_frozen_gradient ? "frozen" : "exact");
   PetscBool has_stop = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "mlshell: progressive", "");
@@ -115,8 +118,8 @@ PetscErrorCode progressive_options(MPI_Comm comm, SimulationOptions* o) {
                             "its output is complete and its summary says where it stopped",
                             "", stop, &stop, &has_stop));
   PetscCall(PetscOptionsString("-mlshell_progressive_hessian",
-                               "galerkin|own: the proxy steps' Newton matrix, J_P^T PSD(H_fine) "
-                               "J_P or the level mesh's own M_l/h^2 + PSD(H_l)",
+                               "own|galerkin: the proxy steps' Newton matrix, the level mesh's "
+                               "own M_l/h^2 + PSD(H_l) or J_P^T PSD(H_fine) J_P",
                                "", hessian, hessian, sizeof hessian, nullptr));
   PetscCall(PetscOptionsString("-mlshell_progressive_gradient",
                                "exact|frozen: the proxy energy's gradient, J_P^T grad Psi or "

@@ -38,7 +38,9 @@ constexpr const char* kMlshellOptions[] = {
     "-mlshell_gauss_points",   "-mlshell_condition",       "-mlshell_condition_steps",
     "-mlshell_limit_csv",      "-mlshell_hierarchy_view",  "-mlshell_hierarchy_write",
     "-mlshell_step_solver",    "-mlshell_hessian_psd",     "-mlshell_force_rtol",
-    "-mlshell_coarse_energy",  "-mlshell_pressure_psd",    "-mlshell_audit_intersections"};
+    "-mlshell_coarse_energy",  "-mlshell_pressure_psd",    "-mlshell_audit_intersections",
+    "-mlshell_progressive_stop_level", "-mlshell_progressive_hessian",
+    "-mlshell_progressive_gradient"};
 
 /// PETSc's own options that only PetscFinalize reads, after mlshell's report.
 constexpr const char* kReadByFinalize[] = {
