@@ -232,3 +232,50 @@ def triangle(rows, out):
         top.legend(fontsize=7)
         bottom.legend(fontsize=7)
     return _save(fig, out, "triangle.png")
+
+
+def progressive(rows, out):
+    """Progressive runs: per scene, the error of each route's result (the probe's distance to the
+    direct fine run's, log scale) against the whole-run wall time a user waits for it: the
+    progressive levels joined in order, the direct coarse and fine runs and RMTR. The converged
+    fine results (direct fine, RMTR, progressive's finest level) differ by round-off: they are
+    drawn on the dotted line at the bottom."""
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    if not any(number(r["wall_time"]) for r in rows):
+        return None
+    fig, axes = plt.subplots(1, len(scenes), figsize=(4.4 * len(scenes), 3.8), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        mine = [r for r in rows if r["scene"] == scene and number(r["wall_time"])]
+        prog = [r for r in mine if r["route"] == "progressive" and r["level"] != ""]
+        last = max((number(r["time"], 0.0) for r in prog), default=0.0)
+        # The fine results (solved to the tolerance: their differences are round-off).
+        fine = [r for r in mine if r["route"] in ("direct-fine", "rmtr")] + prog[-1:]
+        errors = [number(r["probe_error"]) for r in mine
+                  if r not in fine and number(r["probe_error"])]
+        floor = min(errors, default=1e-6) / 10
+
+        def wall(r):
+            if r["route"] == "progressive" and r["level"] != "":
+                return number(r["wall_time"]) - last + number(r["time"], 0.0)
+            return number(r["wall_time"])
+
+        def error(r):
+            return floor if r in fine else max(number(r["probe_error"], 0.0), floor)
+
+        if prog:
+            ax.loglog([wall(r) for r in prog], [error(r) for r in prog], "o-", color="C0",
+                      label="progressive (levels)")
+            for r in prog:
+                ax.annotate(f"L{r['level']}", (wall(r), error(r)), fontsize=7,
+                            textcoords="offset points", xytext=(4, 4))
+        for k, route in enumerate(("direct-fine", "direct-coarse", "rmtr"), 1):
+            pts = [r for r in mine if r["route"] == route]
+            if pts:
+                ax.loglog([wall(r) for r in pts], [error(r) for r in pts], MARKERS[k],
+                          color=f"C{k}", label=route)
+        ax.axhline(floor, color="0.7", lw=0.8, ls=":")
+        ax.set(xlabel="wall time [s]", ylabel="probe error [m] (dotted: converged)",
+               title=scene)
+        ax.legend(fontsize=7)
+    return _save(fig, out, "progressive.png")
+

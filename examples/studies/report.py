@@ -12,6 +12,7 @@ from pathlib import Path
 
 import paper
 import plots
+import report_progressive
 import study_iterations
 import study_scaling
 import study_triangle
@@ -734,6 +735,9 @@ class Report:
             self.triangle_goals(scene, mine)
         self.image(plots.triangle(rows, self.out))
 
+    def progressive(self):
+        report_progressive.section(self, table, against)
+
     @staticmethod
     def fastest(rows, solvers):
         ok = [r for r in rows if r["solver"] in solvers and r["converged"] == "1"
@@ -852,7 +856,7 @@ class Report:
     def write(self):
         for study in (self.iterations, self.work, self.projection, self.condition,
                       self.timestep, self.accuracy, self.peers, self.parallel, self.scaling,
-                      self.triangle):
+                      self.triangle, self.progressive):
             study()
         # ok None: a goal this folder has no measurement for (neither met nor missed).
         goals = [[g, v, "" if ok is None else "met" if ok else "**not met**"]

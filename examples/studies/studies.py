@@ -7,6 +7,7 @@ study, PNG plots and REPORT.md with the paper's values side by side.
   examples/studies/studies.py --full --only peers parallel --scenes trampoline
   examples/studies/studies.py --full --only scaling --solvers rmtr-patch   (refills those rows)
   examples/studies/studies.py --full --only triangle --max-dofs 30000   (triangle scenes)
+  examples/studies/studies.py --full --only progressive   (accuracy against time, per level)
   examples/studies/studies.py --report-only --out DIR   redraw REPORT.md from DIR's CSVs
 
 Studies: iterations (Tables 3-5), work (Tables 6-7), projection (Table 8), condition (Fig. 9),
@@ -14,7 +15,8 @@ timestep (Fig. 10), accuracy (error vs wall time, Pareto front), peers (RMTR vs 
 with GAMG, BoomerAMG, MUMPS), parallel (1 vs 2 ranks, -log_view stages), scaling (V-cycles,
 time and peak memory against resolution: Dogleg, vertex-patch and paper smoothers, TR, bnls),
 triangle (RMTR on paper 2's decimation hierarchies of the triangle-mesh scenes, its three coarse
-models against projected Newton and TR, against resolution).
+models against projected Newton and TR, against resolution), progressive (paper 2's progressive
+runs against the direct fine and coarse runs and RMTR: each level's time and error).
 Every solve runs in OUT/runs/<study>/<case>/ (command.txt, stdout.txt, summary.json)."""
 import argparse
 import datetime
@@ -32,6 +34,7 @@ import study_condition  # noqa: E402
 import study_iterations  # noqa: E402
 import study_parallel  # noqa: E402
 import study_peers  # noqa: E402
+import study_progressive  # noqa: E402
 import study_projection  # noqa: E402
 import study_scaling  # noqa: E402
 import study_timestep  # noqa: E402
@@ -43,7 +46,7 @@ from solvers import SOLVERS  # noqa: E402
 
 STUDIES = {m.NAME: m for m in (study_iterations, study_work, study_projection, study_condition,
                                study_timestep, study_accuracy, study_peers, study_parallel,
-                               study_scaling, study_triangle)}
+                               study_scaling, study_triangle, study_progressive)}
 
 
 def arguments(argv):
@@ -57,7 +60,8 @@ def arguments(argv):
                       help="the paper's resolutions, hours")
     p.add_argument("--only", nargs="+", metavar="STUDY", choices=list(STUDIES),
                    help=f"run only these ({', '.join(STUDIES)})")
-    scenes = list(SCENES) + list(study_triangle.SCENES)
+    scenes = list(dict.fromkeys(list(SCENES) + list(study_triangle.SCENES) +
+                                list(study_progressive.SCENES)))
     p.add_argument("--scenes", nargs="+", metavar="SCENE", choices=scenes,
                    help=f"only these scenes ({', '.join(scenes)}); default: each study's own")
     p.add_argument("--solvers", nargs="+", metavar="SOLVER", choices=list(SOLVERS),

@@ -85,16 +85,11 @@ initial_state:               optional; default: the reference configuration
 time:                        required
   dt: number                 s, > 0
   steps: int                 1..1000000
-  integrator: implicit_euler | quasistatic | progressive   default implicit_euler; quasistatic
-                             (paper 2 eq. 1) repeats argmin |x - x_k|_M^2 / (2 h^2) + E(x) until
-                             |grad E| meets the solver's tolerance; dt is a load step; progressive
-                             (needs geometry.hierarchy): the loading on the coarsest level, then
-                             refined level by level, the finest solved as quasistatic
-  proximal_step: h           s, > 0 (quasistatic, progressive; default 1)
-  max_proximal_solves: int   per step, 1..100000 (quasistatic, progressive; default 50)
-  preview: {max_iterations: 5, tolerance: 1e-3, min_step: 1e-3, max_steps: 200}   progressive:
-                             Newton iterations per proxy step, eps (|d| < sqrt(n_l) eps h_fine),
-                             gamma (line-search step), proxy steps per level past the loading
+  integrator: implicit_euler | quasistatic | progressive   default implicit_euler; quasistatic:
+                             argmin |x - x_k|_M^2/(2 h^2) + E(x) until |grad E| is small (paper 2
+                             eq. 1); progressive: coarsest level of geometry.hierarchy to finest
+  proximal_step: h           s, > 0 (default 1), max_proximal_solves: int per step (default 50)
+  preview: {max_iterations: 5, tolerance: 1e-3, min_step: 1e-3, max_steps: 200}   (progressive)
 probes:                      optional map NAME: POINT; NAME uses letters, digits, _ - .
 output:                      optional
   dir: path                  default out
