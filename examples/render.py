@@ -7,6 +7,7 @@ angle, with a colour bar; --zscale exaggerates z (the out-of-plane wrinkles of a
   xvfb-run -a pvpython examples/render.py out/drape --frame 5 --out drape5.png
   xvfb-run -a pvpython examples/render.py out/plate_buckling --zscale 20
   xvfb-run -a pvpython examples/render.py out/drape --size 1200 500 --no-title --out banner.png
+  xvfb-run -a pvpython examples/render.py out/plate_buckling --series plate_buckling_level0
 
 --frame is a step number (default: the last frame written). Units of the colour bar: m when the
 largest displacement reaches 0.1 m, else mm (--units to choose)."""
@@ -31,6 +32,8 @@ def frames_of(xdmf):
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("folder", help="an mlshell output folder with one *.xdmf series")
+    p.add_argument("--series", help="the series' name when the folder has several (a "
+                   "progressive run's <scene>_level<l>)")
     p.add_argument("--frame", type=int, help="step number (default: the last frame)")
     p.add_argument("--out", help="PNG path (default FOLDER/final.png)")
     p.add_argument("--size", type=int, nargs=2, default=(800, 600), metavar=("W", "H"))
@@ -45,10 +48,10 @@ def main():
     if not a.zscale > 0:
         sys.exit(f"render: --zscale must be > 0, got {a.zscale}")
     folder = Path(a.folder)
-    series = sorted(folder.glob("*.xdmf"))
+    series = sorted(folder.glob(f"{a.series}.xdmf" if a.series else "*.xdmf"))
     if len(series) != 1:
-        sys.exit(f"render: expected one *.xdmf in {folder}, found {len(series)} "
-                 "(does the scene's output list xdmf?)")
+        sys.exit(f"render: expected one {a.series or '*'}.xdmf in {folder}, found "
+                 f"{len(series)} (does the scene's output list xdmf? several series: --series)")
     frames = frames_of(series[0])
     if not frames:
         sys.exit(f"render: {series[0]} lists no frames")

@@ -40,7 +40,9 @@ def section(report, table, against):
         "time up to that level (setup excluded); *wall*: the whole run a user waits for (setup, "
         "hierarchy, output; for a preview, the setup and the time to its level). *max / RMS "
         "error*: vertex distance of the level's result, prolonged to the fine mesh, to the "
-        "converged fine result (mm); *probe*: the probe's distance to the direct fine run's "
+        "converged fine result (mm), and the RMS error relative to the RMS displacement of the "
+        "fine result (on the same branch: a few per cent); *probe*: the probe's distance to the "
+        "direct fine run's "
         "(mm), the only error a coarse mesh's own result has.\n")
     for scene in dict.fromkeys(r["scene"] for r in rows):
         mine = [r for r in rows if r["scene"] == scene]
@@ -53,15 +55,19 @@ def section(report, table, against):
             wall = preview_wall(prog, r) if r["route"] == "progressive" and r["level"] != "" \
                 else number(r["wall_time"])
             speed = f"{fine_wall / wall:.1f}×" if fine_wall and wall else ""
+            scale = number(r.get("final_rms", ""))
+            relative = f"{number(r['rms_error']) / scale:.2%}" \
+                if scale and number(r["rms_error"]) is not None else ""
             body.append([r["route"], r["level"], f"{int(number(r['level_dofs'], 0)):,}"
                          if r["level_dofs"] else "", _s(r["time"]), _s(wall), speed,
                          r["iterations"], r["reason"], _mm(r["max_error"]), _mm(r["rms_error"]),
-                         _mm(r["probe_error"])])
+                         relative, _mm(r["probe_error"])])
         steps = next((r["steps"] for r in mine if r["steps"]), "?")
         dofs = next((r["dofs"] for r in mine if r["route"] == "direct-fine"), "")
         report.add(f"### {scene}: {int(number(dofs, 0)):,} dofs, {steps} load steps\n\n" + table(
             ["route", "level", "dofs", "time [s]", "wall [s]", "direct fine / wall",
-             "iterations", "stop", "max error", "RMS error", "probe"], body))
+             "iterations", "stop", "max error", "RMS error", "RMS / RMS displacement",
+             "probe"], body))
         if not fine or not prog:
             report.goals.append((f"progressive ≥ {GOAL_FINAL:g}× faster than direct fine "
                                  f"({scene})", "not measured", None))

@@ -192,6 +192,9 @@ class Simulation {
   std::vector<ProgressiveLevel> progressive_levels_;
   std::string progressive_outcome_;  ///< empty while running, then the summary's status
   PetscErrorCode run_progressive(int* status);
+  /// Refinement from level l to l + 1: x_{l+1} = P_{l+1}^l(x_l). The seam where contact's safe
+  /// initialisation (paper 2 §4.4, Alg. 2) will replace the plain prolongation.
+  PetscErrorCode refine(int l, Vec coarse, Vec fine);
   /// Proxy steps of level l from x (in place) until it is in equilibrium (level 0: the loading
   /// first); appends the level's record. *interrupted: SIGINT or SIGTERM on some rank.
   PetscErrorCode preview_level(int l, Vec x, double solve_start, bool* interrupted);

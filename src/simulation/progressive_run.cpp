@@ -187,6 +187,12 @@ PetscErrorCode Simulation::preview_level(int l, Vec x, double solve_start, bool*
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Simulation::refine(int l, Vec coarse, Vec fine) {
+  PetscFunctionBeginUser;
+  PetscCall(levels_->transfer(l).prolong(coarse, fine));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Simulation::run_progressive(int* status) {
   PetscFunctionBeginUser;
   const auto& levels = static_cast<const TriangleLevels&>(*levels_);
@@ -270,10 +276,9 @@ PetscErrorCode Simulation::run_progressive(int* status) {
       break;
     }
     PetscCall(write_summary("running", &report));
-    // Refinement: x_{l+1} = P_{l+1}^l(x_l) (the safe initialisation of contact joins here).
     Vec finer;
     PetscCall(levels.layout(l + 1).create_vector(&finer));
-    PetscCall(levels.transfer(l).prolong(x, finer));
+    PetscCall(refine(l, x, finer));
     PetscCall(VecDestroy(&x));
     x = finer;
   }
@@ -375,6 +380,9 @@ PetscErrorCode Simulation::progressive_summary(Json* section) {
   const bool final_result = progressive_outcome_ == "complete";
   std::vector<double> fine;
   if (final_result) PetscCall(layout_->gather_natural(u_, fine));
+  double fine_rms = 0.0;  // the final displacement's RMS over the vertices: the errors' scale
+  for (size_t i = 0; i < fine.size(); ++i) fine_rms += fine[i] * fine[i];
+  if (!fine.empty()) fine_rms = std::sqrt(fine_rms / (fine.size() / 3));
   Json::Array levels;
   for (const ProgressiveLevel& r : progressive_levels_) {
     Json::Object level{{"level", Json(r.level)},
@@ -428,6 +436,7 @@ PetscErrorCode Simulation::progressive_summary(Json* section) {
       {"finest_level", Json(finest)},
       {"last_level", Json(last)},
       {"stopped_early", Json(last < finest || progressive_outcome_ != "complete")},
+      {"final_rms_displacement", final_result ? Json(fine_rms) : Json(nullptr)},
       {"preview",
        Json(Json::Object{{"max_iterations", Json(scene_.time.preview.max_iterations)},
                          {"tolerance", Json(scene_.time.preview.tolerance)},
