@@ -64,10 +64,11 @@ def arguments(argv):
                                 list(study_progressive.SCENES)))
     p.add_argument("--scenes", nargs="+", metavar="SCENE", choices=scenes,
                    help=f"only these scenes ({', '.join(scenes)}); default: each study's own")
-    p.add_argument("--solvers", nargs="+", metavar="SOLVER", choices=list(SOLVERS),
+    p.add_argument("--solvers", nargs="+", metavar="SOLVER",
+                   choices=list(SOLVERS) + list(study_progressive.ROUTES),
                    help="only these solver configurations (studies that compare several: "
-                        "iterations, parallel, scaling); their rows replace only the same "
-                        "solvers' rows")
+                        "iterations, parallel, scaling; progressive: its routes); their rows "
+                        "replace only the same solvers' rows")
     p.add_argument("--max-refine", type=int, default=8, metavar="R",
                    help="skip solves finer than geometry.refine R (e.g. 3: at most 3,675 dofs)")
     p.add_argument("--max-dofs", type=int, metavar="N",

@@ -12,6 +12,9 @@ and RMS vertex distance of that level's result, prolonged to the fine mesh, to t
 result. Every route also gives its probe's distance to the direct fine run's probe (`probe_error`):
 the only error a coarse mesh's own result has, since its vertices are not the fine ones.
 
+`--solvers` picks routes (direct-coarse, progressive, rmtr; the direct fine run, every error's
+reference, always runs); a run replaces the rows of the scenes, resolutions and routes it ran.
+
 The hierarchy is the scene's `hierarchy: {levels: L, ratio: 4}` with the fewest levels whose
 coarsest has at most study_triangle.COARSEST_VERTICES vertices; the coarsest level's mesh comes
 from `-mlshell_hierarchy_write`."""
@@ -110,7 +113,7 @@ def run(ctx):
             if ctx.max_dofs is not None and dofs > ctx.max_dofs:
                 continue
             rows += run_scene(ctx, scene, resolution, dofs, steps)
-    ctx.write_csv(NAME, rows, COLUMNS)
+    ctx.write_csv(NAME, rows, COLUMNS, key=("scene", "resolution", "route"))
 
 
 def run_scene(ctx, scene, resolution, dofs, steps):
@@ -124,6 +127,8 @@ def run_scene(ctx, scene, resolution, dofs, steps):
         return scene_text(ctx.source, scene, resolution, levels_, integrator, mesh_obj)
 
     rows = []
+    routes = ctx.solvers(ROUTES)
+    # The reference of every error: always run.
     fine = ctx.run(NAME, f"{tag}-direct-fine", scene, None, solver, scene_text=text(None),
                    steps=steps)
     reference = probe(fine)
@@ -139,7 +144,7 @@ def run_scene(ctx, scene, resolution, dofs, steps):
             ["-mlshell_evaluate", "-mlshell_hierarchy_write", str(levels_dir)],
             scene_text=text(levels), steps=1)
     coarse_mesh = levels_dir / "level_0.obj"
-    if coarse_mesh.is_file():
+    if coarse_mesh.is_file() and "direct-coarse" in routes:
         coarse = ctx.run(NAME, f"{tag}-direct-coarse", scene, None, solver,
                          scene_text=text(None, mesh_obj=coarse_mesh), steps=steps)
         rows.append({**solver_fields(coarse), **common, "route": "direct-coarse", "level": 0,
@@ -147,8 +152,28 @@ def run_scene(ctx, scene, resolution, dofs, steps):
                      "time": (coarse["summary"] or {}).get("solver", {}).get("solve_time", ""),
                      "probe_error": distance(probe(coarse), reference),
                      "energy": energy(coarse)})
-    prog = ctx.run(NAME, f"{tag}-progressive", scene, None, solver,
-                   scene_text=text(levels, "progressive"), steps=steps)
+    if "progressive" in routes:
+        rows += progressive_rows(ctx, NAME, tag, scene, solver, text(levels, "progressive"),
+                                 common, levels, steps, reference)
+    if "rmtr" in routes:
+        rm = ctx.run(NAME, f"{tag}-rmtr", scene, None,
+                     with_tolerance("rmtr-patch-dogleg", ctx.source, TOLERANCE, MAX_IT,
+                                    relative=False),
+                     scene_text=text(levels), steps=steps)
+        rows.append({**solver_fields(rm), **common, "route": "rmtr", "level": "",
+                     "level_dofs": (rm["summary"] or {}).get("dofs", ""),
+                     "time": (rm["summary"] or {}).get("solver", {}).get("solve_time", ""),
+                     "probe_error": distance(probe(rm), reference), "energy": energy(rm)})
+    for r in rows:
+        r["scene"] = scene
+    return rows
+
+
+def progressive_rows(ctx, study, tag, scene, solver, text, common, levels, steps, reference):
+    """A progressive run's rows, one per level."""
+    rows = []
+    prog = ctx.run(study, f"{tag}-progressive", scene, None, solver, scene_text=text,
+                   steps=steps)
     section = (prog["summary"] or {}).get("progressive") or {}
     base = {**solver_fields(prog), **common, "route": "progressive",
             "final_rms": section.get("final_rms_displacement") or ""}
@@ -163,16 +188,6 @@ def run_scene(ctx, scene, resolution, dofs, steps):
                      "rms_error": 0.0 if last else error.get("rms_distance", ""),
                      "probe_error": distance(probe(prog) if last else p, reference),
                      "energy": f"{level['energy']:.12g}"})
-    if not rows or rows[-1]["route"] != "progressive":
+    if not rows:
         rows.append({**base, "level": "", "level_dofs": ""})
-    rm = ctx.run(NAME, f"{tag}-rmtr", scene, None,
-                 with_tolerance("rmtr-patch-dogleg", ctx.source, TOLERANCE, MAX_IT,
-                                relative=False),
-                 scene_text=text(levels), steps=steps)
-    rows.append({**solver_fields(rm), **common, "route": "rmtr", "level": "",
-                 "level_dofs": (rm["summary"] or {}).get("dofs", ""),
-                 "time": (rm["summary"] or {}).get("solver", {}).get("solve_time", ""),
-                 "probe_error": distance(probe(rm), reference), "energy": energy(rm)})
-    for r in rows:
-        r["scene"] = scene
     return rows
