@@ -44,10 +44,12 @@ class ProxyEnergy final : public Objective {
  private:
   Objective& finest_;
   const LevelTransfer& direct_;
-  Vec fine_u_ = nullptr, fine_g_ = nullptr;
-  Mat fine_h_ = nullptr;    // the finest problem's Hessian
-  Mat galerkin_ = nullptr;  // J_Pᵀ ∇²Ψ J_P
-  Mat template_ = nullptr;  // the union of the Galerkin pattern and `pattern`, zero
+  Mat pattern_ = nullptr;  // a reference to the caller's `pattern`
+  Vec fine_u_ = nullptr, fine_g_ = nullptr, rest_ = nullptr;
+  Mat fine_h_ = nullptr;            // the finest problem's Hessian
+  mutable Mat galerkin_ = nullptr;  // J_Pᵀ ∇²Ψ J_P, on first use
+  mutable Mat template_ = nullptr;  // the union of the Galerkin pattern and `pattern`, zero
+  PetscErrorCode build_galerkin() const;
   Gradient gradient_ = Gradient::kExact;
 };
 

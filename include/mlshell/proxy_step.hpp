@@ -37,12 +37,15 @@ struct ProxyStepReport {
   int iterations = 0;
   int linear_iterations = 0;
   double energy = 0.0;         ///< F at the step's end
-  double gradient_norm = 0.0;  ///< ‖∇F‖₂ at the last Newton matrix (before its update)
+  double gradient_norm = 0.0;  ///< ‖∇F‖₂ at the step's end
   double step_norm = 0.0;      ///< ‖d‖₂ of the last direction
   double alpha = 0.0;          ///< the last line search's step (0 where none ran)
-  bool equilibrium = false;    ///< stopped before the first iteration
-  /// STEP_NORM (‖d‖ < tolerance), LINE_SEARCH (α < γ), MAX_ITERATIONS, LINEAR_SOLVE_FAILED or
-  /// NONFINITE (F or ∇F not finite at the start).
+  /// Stopped before the first iteration (Alg. 1 line 21): on a short Newton step, or on a line
+  /// search that found no step α ≥ γ from there.
+  bool equilibrium = false;
+  /// STEP_NORM (‖d‖ < tolerance), LINE_SEARCH (α < γ), MAX_ITERATIONS, LINEAR_SOLVE_FAILED (no
+  /// factorisation, or no descent) or NONFINITE (F or ∇F not finite at the start or after an
+  /// accepted step).
   std::string stop;
 };
 

@@ -8,13 +8,16 @@
 // and summary.json with a `progressive` section (per level: time, iterations, energy, boundary
 // violation, and at the end each preview's distance to the fine result). summary.json is
 // rewritten after every level, so a run that is killed leaves a summary that says how far it
-// got; SIGINT or SIGTERM end the run after the current proxy step (exit 130), and
-// -mlshell_progressive_stop_level k after level k (exit 0), both with the status saying so.
+// got; during the previews SIGINT or SIGTERM end the run after the current proxy step (exit
+// 130), and -mlshell_progressive_stop_level k after level k (exit 0), both with the status
+// saying so. During the finest level's solve a signal ends the run at once (its summary.json is
+// the one written after the last preview, status "running").
 #include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "mlshell/effects.hpp"
 #include "mlshell/log_events.hpp"
@@ -77,14 +80,13 @@ PetscErrorCode Simulation::write_progress_row(int level, int step, double time,
     PetscCall(PetscPrintf(comm_,
                           "level %d/%d  step %4d  t = %-8.4g  F = % .6e  its = %2d  |d| = %.3e  "
                           "alpha = %-6.3g %s  %.2f s\n",
-                          level, levels_->finest(), step, time, r.energy, r.iterations,
-                          r.step_norm, r.alpha, r.stop.c_str(), wall));
+                          level, levels_->finest(), step, time, r.energy, r.iterations, r.step_norm,
+                          r.alpha, r.stop.c_str(), wall));
   if (output_->csv)
     output_->csv->append({static_cast<long long>(level), static_cast<long long>(step), time,
                           r.energy, static_cast<long long>(r.iterations),
-                          static_cast<long long>(r.linear_iterations), r.gradient_norm,
-                          r.step_norm, r.alpha, static_cast<long long>(r.equilibrium), r.stop,
-                          wall});
+                          static_cast<long long>(r.linear_iterations), r.gradient_norm, r.step_norm,
+                          r.alpha, static_cast<long long>(r.equilibrium), r.stop, wall});
   PetscFunctionReturn(0);
 }
 
@@ -113,8 +115,9 @@ PetscErrorCode Simulation::preview_level(int l, Vec x, double solve_start, bool*
     PetscCall(proxy.create_hessian(&H));
   ProxyNewton newton(
       proxy, H,
-      [&](Vec xl, Mat A) { return options_.progressive_own_hessian ? own.hessian(xl, A)
-                                                                   : proxy.hessian(xl, A); },
+      [&](Vec xl, Mat A) {
+        return options_.progressive_own_hessian ? own.hessian(xl, A) : proxy.hessian(xl, A);
+      },
       like);
   const ProxyStepSettings settings{
       scene_.time.preview.max_iterations,
@@ -142,7 +145,9 @@ PetscErrorCode Simulation::preview_level(int l, Vec x, double solve_start, bool*
     PetscCall(problem_->begin_step(t, fine_x));
     PetscCall(own.begin_step(t, x));
     PetscCall(newton.step(x, settings, &r));
-    if (std::isnan(floor)) floor = r.energy - kUnboundedEnergyFactor * (floor_scale + std::abs(r.energy));
+    // The energy floor of the step solvers (step_solver.hpp), from the level's first step.
+    if (std::isnan(floor))
+      floor = r.energy - kUnboundedEnergyFactor * (floor_scale + std::abs(r.energy));
     ++record.proxy_steps;
     record.iterations += r.iterations;
     record.linear_iterations += r.linear_iterations;
@@ -155,11 +160,25 @@ PetscErrorCode Simulation::preview_level(int l, Vec x, double solve_start, bool*
         k == loading + scene_.time.preview.max_steps)
       PetscCall(write_series_frame(series, x, k, k, true));
     if (!audit_message_.empty()) break;
-    if (r.energy < floor) r.stop = "ENERGY_UNBOUNDED";
+    if (r.energy < floor) {
+      r.stop = "ENERGY_UNBOUNDED";
+      PetscCall(PetscPrintf(comm_,
+                            "mlshell: level %d, step %d: the proxy energy fell to %.3e J, more "
+                            "than %g x (S + |F|) below where the level began (S = %.3e J): it "
+                            "has no minimum near this state; stopping\n",
+                            l, k, r.energy, kUnboundedEnergyFactor, floor_scale));
+    }
     if (last || *interrupted) break;
   }
-  record.equilibrium = done;
-  record.stop = *interrupted && !done ? "INTERRUPTED" : r.stop;
+  // Why the level ended: an intersecting frame or a failed step first, then equilibrium (the
+  // last proxy step's own stop), an interrupt, or its max_steps spent.
+  const bool failed =
+      r.stop == "LINEAR_SOLVE_FAILED" || r.stop == "NONFINITE" || r.stop == "ENERGY_UNBOUNDED";
+  record.equilibrium = done && !failed && audit_message_.empty();
+  record.stop = !audit_message_.empty() ? "INTERSECTION"
+                : failed || done        ? r.stop
+                : *interrupted          ? "INTERRUPTED"
+                                        : "MAX_STEPS";
   // The level's result on the finest mesh: energy, boundary conditions, the preview itself.
   PetscCall(VecDuplicate(u_, &record.preview));
   PetscCall(levels.direct_transfer(l).prolong(x, record.preview));
@@ -203,7 +222,7 @@ PetscErrorCode Simulation::run_progressive(int* status) {
     throw SceneError("-mlshell_progressive_stop_level: must be in 0.." + std::to_string(finest) +
                      " (the levels of " + scene_.file.string() + "'s geometry.hierarchy); got '" +
                      std::to_string(stop_level) + "'");
-  const InterruptScope interrupts;
+  std::optional<InterruptScope> interrupts(std::in_place);
   const double T = scene_.time.steps * scene_.time.dt;
   PetscCall(PetscPrintf(comm_,
                         "mlshell: %s: progressive, levels 0..%d (%d..%d dofs) on %d rank(s), %d "
@@ -229,12 +248,11 @@ PetscErrorCode Simulation::run_progressive(int* status) {
     s.layout = &levels.layout(l);
     s.problem = &multilevel_->level(l);
     if (frames)
-      s.sampling = std::make_unique<DistributedSampling>(
-          *s.disc->sampling_part(1, rank_, size_), *s.layout);
+      s.sampling =
+          std::make_unique<DistributedSampling>(*s.disc->sampling_part(1, rank_, size_), *s.layout);
   }
-  if (rank_ == 0 &&
-      std::find(scene_.output.formats.begin(), scene_.output.formats.end(), "csv") !=
-          scene_.output.formats.end())
+  if (rank_ == 0 && std::find(scene_.output.formats.begin(), scene_.output.formats.end(), "csv") !=
+                        scene_.output.formats.end())
     output_->csv = std::make_unique<CsvTable>(
         output_->dir / "steps.csv",
         std::vector<std::string>{"level", "step", "time", "energy", "iterations",
@@ -245,13 +263,16 @@ PetscErrorCode Simulation::run_progressive(int* status) {
     std::string message;
     PetscCall(audit_frame(output_->frames, u_, 0, 0.0, &pairs, &message));
     if (pairs > 0)
-      throw SceneError(scene_.file.string() + ": geometry.mesh: the input surface intersects "
-                       "itself: " + message);
+      throw SceneError(scene_.file.string() +
+                       ": geometry.mesh: the input surface intersects "
+                       "itself: " +
+                       message);
   }
   // Previews: every term's Hessian projected (Alg. 1's PSD), the finest's and the levels' own.
   for (int l = 0; l <= finest; ++l)
     for (const auto& t : multilevel_->level(l).terms()) t->set_hessian_projection(true);
   const double solve_start = MPI_Wtime();
+  all_converged_ = false;  // until the finest level converges: no summary before says so
   std::string outcome = "complete";
   SolveReport report;
   report.reason = "not run";
@@ -266,8 +287,9 @@ PetscErrorCode Simulation::run_progressive(int* status) {
     PetscCall(preview_level(l, x, solve_start, &interrupted));
     const ProgressiveLevel& done = progressive_levels_.back();
     PetscCall(VecCopy(done.preview, u_));  // the summary's state: this preview, on the finest
-    const bool failed = done.stop == "LINEAR_SOLVE_FAILED" || done.stop == "NONFINITE" ||
-                        done.stop == "ENERGY_UNBOUNDED" || !audit_message_.empty();
+    // The load steps level 0 has taken (all of them, unless it was interrupted during them).
+    if (l == 0) steps_done_ = std::min(done.proxy_steps, scene_.time.steps);
+    const bool failed = !done.equilibrium && done.stop != "INTERRUPTED" && done.stop != "MAX_STEPS";
     if (failed || interrupted || l == stop_level) {
       outcome = !audit_message_.empty() ? "intersection"
                 : failed                ? "solver_failed"
@@ -292,6 +314,10 @@ PetscErrorCode Simulation::run_progressive(int* status) {
     PetscCall(VecCopy(x, u_));
     FrameSeries& series = output_->level_frames[finest];
     PetscCall(write_series_frame(series, u_, 0, 0.0, true));
+    std::string start_intersects = audit_message_;  // the next audit clears it
+    // The finest solve cannot stop half-way with a valid result: a signal now ends the run at
+    // once, and summary.json stays the one written after the last preview ("running").
+    interrupts.reset();
     const double t0 = MPI_Wtime();
     {
       const LogStageScope solve(stage_solve_);
@@ -328,7 +354,8 @@ PetscErrorCode Simulation::run_progressive(int* status) {
     record.wall_time = wall;
     record.time_to_level = MPI_Wtime() - solve_start;
     progressive_levels_.push_back(record);
-    all_converged_ = report.converged;
+    if (audit_message_.empty()) audit_message_ = start_intersects;
+    all_converged_ = report.converged && audit_message_.empty();
     outcome = !audit_message_.empty() ? "intersection"
               : report.converged      ? "complete"
                                       : "solver_failed";
@@ -337,9 +364,8 @@ PetscErrorCode Simulation::run_progressive(int* status) {
                             "mlshell: level %d/%d (finest): %d dofs, %s (%s, |g| = %.3e after %d "
                             "iterations) after %.2f s, %.2f s since the start\n",
                             finest, finest, disc_->num_dofs(),
-                            report.converged ? "converged" : "NOT converged",
-                            report.reason.c_str(), report.gradient_norm, report.iterations, wall,
-                            record.time_to_level));
+                            report.converged ? "converged" : "NOT converged", report.reason.c_str(),
+                            report.gradient_norm, report.iterations, wall, record.time_to_level));
   } else {
     all_converged_ = false;
     report.reason = outcome;
@@ -358,12 +384,12 @@ PetscErrorCode Simulation::run_progressive(int* status) {
     if (output_->level_frames[c].xdmf)
       files += ", " + output_->level_frames[c].xdmf->xdmf_path().filename().string();
   if (outcome == "preview" || outcome == "interrupted")
-    PetscCall(PetscPrintf(comm_,
-                          "mlshell: %s after level %d of %d: the results are previews, not the "
-                          "converged fine solution\n",
-                          outcome == "preview" ? "stopped (-mlshell_progressive_stop_level)"
-                                               : "interrupted",
-                          static_cast<int>(progressive_levels_.size()) - 1, finest));
+    PetscCall(PetscPrintf(
+        comm_,
+        "mlshell: %s after level %d of %d: the results are previews, not the "
+        "converged fine solution\n",
+        outcome == "preview" ? "stopped (-mlshell_progressive_stop_level)" : "interrupted",
+        static_cast<int>(progressive_levels_.size()) - 1, finest));
   PetscCall(PetscPrintf(comm_, "mlshell: results in %s (summary.json%s%s)\n",
                         fs::absolute(output_->dir).c_str(), output_->csv ? ", steps.csv" : "",
                         files.c_str()));
@@ -438,14 +464,13 @@ PetscErrorCode Simulation::progressive_summary(Json* section) {
       {"stopped_early", Json(last < finest || progressive_outcome_ != "complete")},
       {"final_rms_displacement", final_result ? Json(fine_rms) : Json(nullptr)},
       {"preview",
-       Json(Json::Object{{"max_iterations", Json(scene_.time.preview.max_iterations)},
-                         {"tolerance", Json(scene_.time.preview.tolerance)},
-                         {"min_step", Json(scene_.time.preview.min_step)},
-                         {"max_steps", Json(scene_.time.preview.max_steps)},
-                         {"newton_matrix",
-                          Json(options_.progressive_own_hessian ? "own" : "galerkin")},
-                         {"gradient",
-                          Json(options_.progressive_frozen_gradient ? "frozen" : "exact")}})}});
+       Json(Json::Object{
+           {"max_iterations", Json(scene_.time.preview.max_iterations)},
+           {"tolerance", Json(scene_.time.preview.tolerance)},
+           {"min_step", Json(scene_.time.preview.min_step)},
+           {"max_steps", Json(scene_.time.preview.max_steps)},
+           {"newton_matrix", Json(options_.progressive_own_hessian ? "own" : "galerkin")},
+           {"gradient", Json(options_.progressive_frozen_gradient ? "frozen" : "exact")}})}});
   PetscFunctionReturn(0);
 }
 

@@ -1,6 +1,7 @@
 // Algorithm 1 of paper 2 (see proxy_step.hpp).
 #include "mlshell/proxy_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mlshell {
@@ -93,6 +94,10 @@ PetscErrorCode ProxyNewton::step(Vec x, const ProxyStepSettings& settings,
     PetscCall(VecNorm(g_, NORM_2, &gnorm));
     report->energy = f;
     report->gradient_norm = gnorm;
+    if (!std::isfinite(f) || !std::isfinite(gnorm)) {  // the line search saw f, not ∇F
+      report->stop = "NONFINITE";
+      break;
+    }
   }
   report->equilibrium = report->iterations == 0 && report->stop != "LINEAR_SOLVE_FAILED" &&
                         report->stop != "NONFINITE";

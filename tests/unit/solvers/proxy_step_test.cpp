@@ -4,12 +4,12 @@
 //   MAX_ITERATIONS  the iteration budget spent far from the minimum;
 //   LINE_SEARCH     a Newton matrix 1000× too soft: its steps overshoot, α < γ;
 //   LINEAR_SOLVE_FAILED  a negative definite matrix: d ascends, the step refuses it.
+#include "mlshell/proxy_step.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
-
-#include "mlshell/proxy_step.hpp"
 
 using namespace mlshell;
 
@@ -57,7 +57,7 @@ struct StepRun {
 };
 
 StepRun run(double matrix_scale, double start, const ProxyStepSettings& settings,
-        ProxyStepReport* second = nullptr) {
+            ProxyStepReport* second = nullptr) {
   Quartic f(matrix_scale);
   Vec x, g;
   Mat H;
@@ -67,7 +67,8 @@ StepRun run(double matrix_scale, double start, const ProxyStepSettings& settings
   VecSet(x, start);
   StepRun r;
   {
-    ProxyNewton newton(f, H, [&](Vec y, Mat A) { return f.hessian(y, A); }, x);
+    ProxyNewton newton(
+        f, H, [&](Vec y, Mat A) { return f.hessian(y, A); }, x);
     PetscCallAbort(PETSC_COMM_SELF, newton.step(x, settings, &r.report));
     if (second) PetscCallAbort(PETSC_COMM_SELF, newton.step(x, settings, second));
   }
@@ -109,6 +110,7 @@ TEST(ProxyNewton, StopsWhenTheLineSearchStepFallsBelowGamma) {
   EXPECT_EQ(r.report.stop, "LINE_SEARCH");
   EXPECT_LT(r.report.alpha, 1e-2);
   EXPECT_EQ(r.report.iterations, 0);
+  EXPECT_TRUE(r.report.equilibrium);  // Alg. 1: no iteration taken
   // With γ small enough the same steps are taken, shortened, and the objective falls.
   const StepRun patient = run(1e-3, 3.0, {3, 1e-10, 1e-6});
   EXPECT_EQ(patient.report.iterations, 3);
