@@ -35,7 +35,7 @@ while IFS= read -r command; do
 done <tour.sh
 
 echo "check: the runs the tour promises are complete, and the picture exists"
-for run in out/trampoline out/my_drape; do
+for run in out/trampoline out/my_drape out/progressive_plate; do
   grep -q '"status": "complete"' "$run/summary.json" || die "$run/summary.json is not complete"
 done
 [[ -s out/trampoline/final.png ]] || die "the tour's picture out/trampoline/final.png is missing"
