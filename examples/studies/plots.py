@@ -235,17 +235,23 @@ def triangle(rows, out):
 
 
 def progressive(rows, out):
-    """Progressive runs: per scene, the error of each route's result (the probe's distance to the
+    """Progressive runs: per scene and resolution, the error of each route's result (the probe's distance to the
     direct fine run's, log scale) against the whole-run wall time a user waits for it: the
     progressive levels joined in order, the direct coarse and fine runs and RMTR. The converged
     fine results (direct fine, RMTR, progressive's finest level) differ by round-off: they are
     drawn on the dotted line at the bottom."""
-    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    groups = list(dict.fromkeys((r["scene"], r["resolution"]) for r in rows))
     if not any(number(r["wall_time"]) for r in rows):
         return None
-    fig, axes = plt.subplots(1, len(scenes), figsize=(4.4 * len(scenes), 3.8), squeeze=False)
-    for ax, scene in zip(axes[0], scenes):
-        mine = [r for r in rows if r["scene"] == scene and number(r["wall_time"])]
+    columns = min(4, len(groups))
+    lines = -(-len(groups) // columns)
+    fig, axes = plt.subplots(lines, columns, figsize=(4.4 * columns, 3.8 * lines), squeeze=False)
+    for ax in axes.flat[len(groups):]:
+        ax.set_visible(False)
+    for ax, (scene, resolution) in zip(axes.flat, groups):
+        mine = [r for r in rows if r["scene"] == scene and r["resolution"] == resolution
+                and number(r["wall_time"])]
+        dofs = max((number(r["dofs"], 0) for r in mine), default=0)
         prog = [r for r in mine if r["route"] == "progressive" and r["level"] != ""]
         last = max((number(r["time"], 0.0) for r in prog), default=0.0)
         # The fine results (solved to the tolerance: their differences are round-off).
@@ -275,7 +281,7 @@ def progressive(rows, out):
                           color=f"C{k}", label=route)
         ax.axhline(floor, color="0.7", lw=0.8, ls=":")
         ax.set(xlabel="wall time [s]", ylabel="probe error [m] (dotted: converged)",
-               title=scene)
+               title=f"{scene}, {dofs:,.0f} dofs")
         ax.legend(fontsize=7)
     return _save(fig, out, "progressive.png")
 
