@@ -736,7 +736,7 @@ class Report:
         self.image(plots.triangle(rows, self.out))
 
     def progressive(self):
-        report_progressive.section(self, table, against)
+        report_progressive.section(self, table, against, seconds)
 
     @staticmethod
     def fastest(rows, solvers):

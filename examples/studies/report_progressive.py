@@ -14,11 +14,6 @@ def _mm(v):
     return "" if x is None else f"{1000 * x:.3g}"
 
 
-def _s(v):
-    x = number(v)
-    return "" if x is None else f"{x:.3g}"
-
-
 def preview_wall(rows, row):
     """The wall time a user waits for a progressive level: the run's setup (its whole wall time
     less the time to its last level) and the time to that level."""
@@ -26,7 +21,7 @@ def preview_wall(rows, row):
     return number(row["wall_time"], 0.0) - last + number(row["time"], 0.0)
 
 
-def section(report, table, against):
+def section(report, table, against, seconds):
     rows = report.csv("progressive")
     if rows is None:
         return
@@ -64,7 +59,7 @@ def section(report, table, against):
             relative = f"{number(r['rms_error']) / scale:.2%}" \
                 if scale and number(r["rms_error"]) is not None else ""
             body.append([r["route"], r["level"], f"{int(number(r['level_dofs'], 0)):,}"
-                         if r["level_dofs"] else "", _s(r["time"]), _s(wall), speed,
+                         if r["level_dofs"] else "", seconds(r["time"]), seconds(wall), speed,
                          r["iterations"], r["reason"], _mm(r["max_error"]), _mm(r["rms_error"]),
                          relative, _mm(r["probe_error"])])
         steps = next((r["steps"] for r in mine if r["steps"]), "?")

@@ -103,6 +103,8 @@ class Simulation {
   PetscErrorCode set_initial_state();
   PetscErrorCode evaluate(int* status);
   PetscErrorCode step(int n, SolveReport& report);
+  /// Adds a step's solve (its report and wall time) to the run's totals.
+  void count_solve(const SolveReport& report, double wall);
   /// Step n's solve fell through the energy floor: says why and what to change, and returns
   /// to the state of step n − 1.
   PetscErrorCode stop_unbounded(int n, SolveReport& report);

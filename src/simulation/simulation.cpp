@@ -476,6 +476,14 @@ PetscErrorCode Simulation::step(int n, SolveReport& report) {
   PetscFunctionReturn(0);
 }
 
+void Simulation::count_solve(const SolveReport& report, double wall) {
+  total_iterations_ += report.iterations;
+  total_linear_iterations_ += report.linear_iterations;
+  total_solves_ += report.solves;
+  solve_time_ += wall;
+  rmtr_totals_ += report.rmtr;
+}
+
 PetscErrorCode Simulation::run(int* status) {
   PetscFunctionBeginUser;
   PetscCall(set_initial_state());
@@ -546,11 +554,7 @@ PetscErrorCode Simulation::run(int* status) {
     PetscCall(VecCopy(v_, v_last_));
     PetscCall(step(n, report));
     const double wall = MPI_Wtime() - t0;
-    total_iterations_ += report.iterations;
-    total_linear_iterations_ += report.linear_iterations;
-    total_solves_ += report.solves;
-    solve_time_ += wall;
-    rmtr_totals_ += report.rmtr;
+    count_solve(report, wall);
     if (report.unbounded) {
       all_converged_ = false;
       PetscCall(stop_unbounded(n, report));
