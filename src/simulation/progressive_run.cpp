@@ -264,9 +264,7 @@ PetscErrorCode Simulation::run_progressive(int* status) {
     PetscCall(audit_frame(output_->frames, u_, 0, 0.0, &pairs, &message));
     if (pairs > 0)
       throw SceneError(scene_.file.string() +
-                       ": geometry.mesh: the input surface intersects "
-                       "itself: " +
-                       message);
+                       ": geometry.mesh: the input surface intersects itself: " + message);
   }
   // Previews: every term's Hessian projected (Alg. 1's PSD), the finest's and the levels' own.
   for (int l = 0; l <= finest; ++l)
