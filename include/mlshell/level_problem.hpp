@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <array>
+#include <string_view>
 #include <vector>
 
 #include "mlshell/energy_term.hpp"
@@ -26,6 +27,12 @@ class LevelProblem final : public Objective {
   T* find_term() const {
     for (const auto& t : terms_)
       if (auto* p = dynamic_cast<T*>(t.get())) return p;
+    return nullptr;
+  }
+  /// The term called `name` (EnergyTerm::name(), e.g. "proximal"), or null.
+  const EnergyTerm* find_term(std::string_view name) const {
+    for (const auto& t : terms_)
+      if (t->name() == name) return t.get();
     return nullptr;
   }
   const ParallelLayout& layout() const { return layout_; }

@@ -64,13 +64,6 @@ class InterruptScope {
   void (*old_term_)(int) = SIG_DFL;
 };
 
-/// The term of the scene's proximal step ½h⁻²‖x − xᵗ‖²_M in a level's problem.
-const EnergyTerm& proximal_term(const LevelProblem& problem) {
-  for (const auto& t : problem.terms())
-    if (t->name() == "proximal") return *t;
-  throw std::logic_error("progressive run: a quasistatic problem without its proximal term");
-}
-
 }  // namespace
 
 PetscErrorCode Simulation::write_progress_row(int level, int step, double time,
@@ -97,7 +90,7 @@ PetscErrorCode Simulation::preview_level(int l, Vec x, double solve_start, bool*
   const int T = scene_.time.steps;
   const double dt = scene_.time.dt;
   LevelProblem& own = multilevel_->level(l);
-  const EnergyTerm& proximal = proximal_term(*problem_);
+  const EnergyTerm& proximal = *problem_->find_term("proximal");  // ½h⁻²‖x − xᵗ‖²_M
   // The proxy F_l = Ψ ∘ P^l (the finest problem, its proximal term included) and its Newton
   // matrix; both exist while the level is stepped.
   Vec like, fine_x;

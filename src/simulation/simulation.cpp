@@ -496,10 +496,8 @@ PetscErrorCode Simulation::run(int* status) {
     const LogEventScope event("Setup:solver");
     solver_ = std::make_unique<StepSolver>(*problem_, multilevel_.get(), &*options_.solver);
     if (scene_.time.quasistatic()) {
-      const EnergyTerm* proximal = nullptr;
-      for (const auto& t : problem_->terms())
-        if (t->name() == "proximal") proximal = t.get();
-      stepper_ = std::make_unique<Quasistatic>(*multilevel_, *solver_, *proximal,
+      stepper_ = std::make_unique<Quasistatic>(*multilevel_, *solver_,
+                                               *problem_->find_term("proximal"),
                                                scene_.time.max_proximal_solves);
     } else {
       stepper_ = std::make_unique<ImplicitEuler>(*multilevel_, *solver_, scene_.time.dt);
