@@ -494,6 +494,21 @@ PetscErrorCode add_ghost_row(Mat A, BlockColumns& bc, PetscInt n, const PetscInt
 
 }  // namespace
 
+PetscErrorCode replace_matrix(Mat A, Mat* B) {
+  PetscFunctionBeginUser;
+  const PetscObjectState nonzero_state = A->nonzerostate;
+  PetscCall(MatHeaderReplace(A, B));
+  A->nonzerostate = std::max(nonzero_state, A->nonzerostate) + 1;
+  PetscContainer container = nullptr;
+  PetscCall(PetscObjectQuery((PetscObject)A, kColumnsKey, (PetscObject*)&container));
+  if (container) {  // the columns now belong to A
+    void* bc = nullptr;
+    PetscCall(PetscContainerGetPointer(container, &bc));
+    static_cast<BlockColumns*>(bc)->owner = A;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode add_element_matrix(Mat A, PetscInt n, const PetscInt* nodes, const double* values) {
   PetscFunctionBeginUser;
   BlockColumns* bc = block_columns_of(A);

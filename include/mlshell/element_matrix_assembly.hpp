@@ -60,6 +60,12 @@ PetscErrorCode add_point_matrix(Mat A, Mat M);
 PetscErrorCode attach_block_columns(Mat A, const std::vector<PetscInt>& block_of_local,
                                     const std::vector<std::vector<int>>& ghost_columns);
 
+/// Gives A the structure and values of *B (made by create_prefilled_block_matrix, e.g. with a
+/// larger pattern) under A's handle, so that solvers and preconditioners holding A see the new
+/// pattern (MatHeaderReplace); *B is consumed. A's nonzero state grows, so a preconditioner
+/// set up on A starts over (a new symbolic factorisation).
+PetscErrorCode replace_matrix(Mat A, Mat* B);
+
 /// A += the dense 3n × 3n row-major element matrix on local block indices `nodes`. Uses the
 /// CSR arrays (and the ghost rows) when `A` was made by create_prefilled_block_matrix, else
 /// MatSetValuesBlockedLocal. The caller assembles A afterwards (MAT_FINAL_ASSEMBLY) as with

@@ -86,6 +86,20 @@ class EnergyTerm {
   /// Point pairs (natural indices) that the term's Hessian couples beyond the element stencils
   /// (contact pairs); the level's Hessian is preallocated for them.
   virtual void extend_sparsity(std::vector<std::array<int, 2>>& pairs) const {}
+  /// Changes whenever extend_sparsity's pairs do: LevelProblem rebuilds a Hessian made for an
+  /// older version.
+  virtual long sparsity_version() const { return 0; }
+  /// Before a Hessian at the prepared state: adapts extend_sparsity's pairs to it (collective).
+  virtual PetscErrorCode update_sparsity() { return 0; }
+
+  /// Terms whose stencils reach beyond the layout's local points (contact with another rank's
+  /// surface) read the global vectors in prepare(u, du) before add (du null), max_step and
+  /// after_accept (collective: LevelProblem calls it on every rank with the same vectors whose
+  /// local values those hooks then get), and add the gradient at points that are not local in
+  /// add_nonlocal_gradient, after add.
+  virtual bool needs_prepare() const { return false; }
+  virtual PetscErrorCode prepare(Vec u, Vec du) { return 0; }
+  virtual PetscErrorCode add_nonlocal_gradient(Vec g) const { return 0; }
   /// Constraints solved by an augmented Lagrangian (an outer loop around the solve): whether the
   /// term has one, its violation at u (local; the same measure as its tolerance) and its
   /// tolerance, and the first-order multiplier update λ ← λ − β c(u) given the violation over

@@ -64,6 +64,9 @@ class LevelProblem final : public Objective {
   /// stencils, e.g. the pattern of Galerkin coarse Hessians J_Pᵀ H J_P on a decimated level.
   void extend_pattern(std::vector<std::array<int, 2>> pairs) { pattern_pairs_ = std::move(pairs); }
   PetscErrorCode create_hessian(Mat* H) const override { return create_matrix(H); }
+  /// The sum of the terms' sparsity versions (EnergyTerm::sparsity_version): hessian() remakes
+  /// a matrix made for another one.
+  long sparsity_version() const;
   PetscErrorCode force_scale(Vec u, PetscReal* scale) override {
     return external_force_norm(u, scale);
   }
@@ -97,6 +100,9 @@ class LevelProblem final : public Objective {
 
  private:
   PetscErrorCode evaluate(Vec u, PetscReal* f, Vec g, const EnergyTerm* excluded);
+  /// Every term's prepare(u, du) that needs one (only the step limiters' if asked).
+  PetscErrorCode prepare_terms(Vec u, Vec du, bool step_limiters_only = false);
+  PetscErrorCode add_nonlocal_gradients(Vec g, const EnergyTerm* excluded);
   using PerTerm = std::function<double(const EnergyTerm&, const std::vector<double>&)>;
   /// One number per term from this rank's local values, reduced over the ranks with `op`.
   PetscErrorCode reduce_per_term(Vec u, const PerTerm& value, MPI_Op op, std::vector<double>& out);

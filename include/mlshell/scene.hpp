@@ -279,8 +279,34 @@ struct PressureEffect {
   bool ramp = false;
 };
 
+/// `contact: {thickness: ξ, gap: ĝ, self: true, stiffness: κ}` — IPC barrier contact of a
+/// triangle shell with itself and with the scene's colliders (docs/contact.md): the
+/// mid-surfaces keep a distance ξ, and the barrier acts within the gap ĝ beyond it.
+struct ContactEffect {
+  std::optional<double> thickness;  ///< ξ ≥ 0 (m); default the shell's thickness
+  std::optional<double> gap;        ///< ĝ > 0 (m); default 10⁻³ × the shell's bounding-box diagonal
+  bool self = true;                 ///< self-contact of the shell
+  std::optional<double> stiffness;  ///< κ > 0, fixed; default adaptive (IPC)
+};
+
+/// A static obstacle for contact (needs a `contact` effect):
+/// `collider: {sphere: {center: [x, y, z], radius: r, subdivisions: 3}}`,
+/// `collider: {plane: {point: [x, y, z], normal: [nx, ny, nz], size: s}}` (a square of side s),
+/// `collider: {box: {center: [x, y, z], size: [sx, sy, sz]}}` or `collider: {obj: path}`.
+struct ColliderEffect {
+  enum class Shape { kSphere, kPlane, kBox, kObj } shape = Shape::kSphere;
+  Vec3 center{0, 0, 0};            ///< sphere and box centre; the plane's point
+  double radius = 0.0;             ///< sphere, > 0
+  int subdivisions = 3;            ///< sphere: icosphere subdivisions, 0..6
+  Vec3 normal{0, 0, 1};            ///< plane, non-zero (normalised)
+  std::optional<double> side;      ///< plane: the square's side; default 10 × the shell's size
+  Vec3 size{1, 1, 1};              ///< box edge lengths, > 0
+  std::filesystem::path obj;       ///< obj: the resolved path of a triangle surface
+};
+
 using Effect = std::variant<InertiaEffect, GravityEffect, SurfaceLoadEffect, LineLoadEffect,
-                            PointLoadEffect, DirichletEffect, ClampEffect, PressureEffect>;
+                            PointLoadEffect, DirichletEffect, ClampEffect, PressureEffect,
+                            ContactEffect, ColliderEffect>;
 
 /// Name used in YAML, logs, CSV columns and summary.json ("inertia", "gravity", ...).
 std::string effect_name(const Effect& e);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "mlshell/effects.hpp"
+#include "mlshell/element_matrix_assembly.hpp"
 
 namespace mlshell {
 
@@ -28,11 +29,27 @@ PetscErrorCode LevelProblem::begin_step(double time, Vec predictor) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode LevelProblem::prepare_terms(Vec u, Vec du, bool step_limiters_only) {
+  PetscFunctionBeginUser;
+  for (auto& t : terms_)
+    if (t->needs_prepare() && (!step_limiters_only || t->limits_steps()))
+      PetscCall(t->prepare(u, du));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LevelProblem::add_nonlocal_gradients(Vec g, const EnergyTerm* excluded) {
+  PetscFunctionBeginUser;
+  for (const auto& t : terms_)
+    if (t->needs_prepare() && t.get() != excluded) PetscCall(t->add_nonlocal_gradient(g));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LevelProblem::max_step(Vec u, Vec du, PetscReal* alpha) {
   PetscFunctionBeginUser;
   *alpha = 1.0;
   if (std::none_of(terms_.begin(), terms_.end(), [](const auto& t) { return t->limits_steps(); }))
     PetscFunctionReturn(0);
+  PetscCall(prepare_terms(u, du, true));
   PetscCall(layout_.to_local(u, u_local_));
   PetscCall(layout_.to_local(du, d_local_));
   double mine = 1.0;
@@ -44,15 +61,56 @@ PetscErrorCode LevelProblem::max_step(Vec u, Vec du, PetscReal* alpha) {
 
 PetscErrorCode LevelProblem::accepted(Vec u) {
   PetscFunctionBeginUser;
+  PetscCall(prepare_terms(u, nullptr));
   PetscCall(layout_.to_local(u, u_local_));
   for (auto& t : terms_) t->after_accept(u_local_);
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+constexpr const char* kPatternVersionKey = "mlshell_pattern_version";
+
+PetscErrorCode destroy_version(void* p) {
+  delete static_cast<long*>(p);
+  return 0;
+}
+
+/// The sparsity version a matrix was made for (create_matrix); -1 if unknown.
+long pattern_version(Mat H) {
+  PetscContainer c = nullptr;
+  if (PetscObjectQuery((PetscObject)H, kPatternVersionKey, (PetscObject*)&c) || !c) return -1;
+  void* p = nullptr;
+  if (PetscContainerGetPointer(c, &p) || !p) return -1;
+  return *static_cast<long*>(p);
+}
+
+PetscErrorCode set_pattern_version(Mat H, long version) {
+  PetscFunctionBeginUser;
+  PetscContainer c;
+  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)H), &c));
+  PetscCall(PetscContainerSetPointer(c, new long(version)));
+  PetscCall(PetscContainerSetUserDestroy(c, destroy_version));
+  PetscCall(PetscObjectCompose((PetscObject)H, kPatternVersionKey, (PetscObject)c));
+  PetscCall(PetscContainerDestroy(&c));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+long LevelProblem::sparsity_version() const {
+  long version = 0;
+  for (const auto& t : terms_) version += t->sparsity_version();
+  return version;
+}
+
 PetscErrorCode LevelProblem::create_matrix(Mat* H) const {
+  PetscFunctionBeginUser;
   std::vector<std::array<int, 2>> pairs = pattern_pairs_;
   for (const auto& t : terms_) t->extend_sparsity(pairs);
-  return layout_.create_matrix(H, pairs);
+  PetscCall(layout_.create_matrix(H, pairs));
+  PetscCall(set_pattern_version(*H, sparsity_version()));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode LevelProblem::face_fields(
@@ -108,6 +166,7 @@ PetscErrorCode LevelProblem::objective_without(const EnergyTerm& excluded, Vec u
 PetscErrorCode LevelProblem::evaluate(Vec u, PetscReal* f, Vec g, const EnergyTerm* excluded) {
   PetscFunctionBeginUser;
   ++objective_evaluations_;
+  PetscCall(prepare_terms(u, nullptr));
   PetscCall(layout_.to_local(u, u_local_));
   if (g) g_local_.assign(u_local_.size(), 0.0);
   CompensatedSum local;
@@ -127,6 +186,7 @@ PetscErrorCode LevelProblem::evaluate(Vec u, PetscReal* f, Vec g, const EnergyTe
   if (g) {
     PetscCall(VecZeroEntries(g));
     PetscCall(layout_.add_to_global(g_local_, g));
+    PetscCall(add_nonlocal_gradients(g, excluded));
   }
   PetscFunctionReturn(0);
 }
@@ -134,6 +194,24 @@ PetscErrorCode LevelProblem::evaluate(Vec u, PetscReal* f, Vec g, const EnergyTe
 PetscErrorCode LevelProblem::hessian(Vec u, Mat H) {
   PetscFunctionBeginUser;
   ++hessian_evaluations_;
+  PetscCall(prepare_terms(u, nullptr));
+  // Terms whose pairs come and go (contact) may need a pattern H was not made for: then H is
+  // made anew under the same handle, so the solvers holding it see the new pattern.
+  for (auto& t : terms_) PetscCall(t->update_sparsity());
+  if (const long version = sparsity_version(); version != 0 && pattern_version(H) != version) {
+    Mat fresh;
+    PetscCall(create_matrix(&fresh));
+    PetscInt references;
+    PetscCall(PetscObjectGetReference((PetscObject)fresh, &references));
+    if (references > 1) {  // the layout keeps the first matrix of a pattern: take a copy
+      Mat copy;
+      PetscCall(create_matrix(&copy));
+      PetscCall(MatDestroy(&fresh));
+      fresh = copy;
+    }
+    PetscCall(replace_matrix(H, &fresh));
+    PetscCall(set_pattern_version(H, version));
+  }
   PetscCall(layout_.to_local(u, u_local_));
   PetscCall(MatZeroEntries(H));
   CompensatedSum ignored;
@@ -155,6 +233,7 @@ PetscErrorCode LevelProblem::hessian(Vec u, Mat H) {
 PetscErrorCode LevelProblem::reduce_per_term(Vec u, const PerTerm& value, MPI_Op op,
                                              std::vector<double>& out) {
   PetscFunctionBeginUser;
+  PetscCall(prepare_terms(u, nullptr));
   PetscCall(layout_.to_local(u, u_local_));
   std::vector<double> mine;
   for (const auto& t : terms_) mine.push_back(value(*t, u_local_));
@@ -239,6 +318,7 @@ PetscErrorCode LevelProblem::report(Vec u, std::vector<double>& energies, PetscR
   PetscFunctionBeginUser;
   // One pass over the terms for their energies and the gradient (the same gradient as
   // objective()'s), not counted among the solvers' evaluations.
+  PetscCall(prepare_terms(u, nullptr));
   PetscCall(layout_.to_local(u, u_local_));
   g_local_.assign(u_local_.size(), 0.0);
   std::vector<double> mine;
@@ -259,6 +339,7 @@ PetscErrorCode LevelProblem::report(Vec u, std::vector<double>& energies, PetscR
   PetscCall(VecDuplicate(u, &g));
   PetscCall(VecZeroEntries(g));
   PetscCall(layout_.add_to_global(g_local_, g));
+  PetscCall(add_nonlocal_gradients(g, nullptr));
   PetscCall(VecNorm(g, NORM_2, gnorm));
   PetscCall(VecDestroy(&g));
   PetscFunctionReturn(0);

@@ -13,6 +13,8 @@
 namespace mlshell::scene_reading {
 namespace {
 
+namespace fs = std::filesystem;
+
 constexpr std::string_view kVector = "[x, y, z]";
 
 bool optional_ramp(const Field& params) {
@@ -84,18 +86,18 @@ std::array<bool, 3> read_components(const Field& field) {
 
 // One reader per effect: `params` is the value of `{name: params}` (null for a bare name).
 
-Effect read_inertia(const Field& params, const GeometrySpec&) {
+Effect read_inertia(const Field& params, const GeometrySpec&, const fs::path&) {
   params.check(params.is_null() || (params.is_map() && params.entries().empty()),
                "inertia takes no parameters", "a bare `- inertia`");
   return InertiaEffect{};
 }
 
-Effect read_gravity(const Field& params, const GeometrySpec&) {
+Effect read_gravity(const Field& params, const GeometrySpec&, const fs::path&) {
   if (params.is_null()) return GravityEffect{};
   return GravityEffect{params.numbers<3>("[gx, gy, gz] in m/s², e.g. [0, 0, -9.81]")};
 }
 
-Effect read_surface_load(const Field& params, const GeometrySpec&) {
+Effect read_surface_load(const Field& params, const GeometrySpec&, const fs::path&) {
   params.expect_keys({"force_per_area", "ramp"});
   return SurfaceLoadEffect{
       .force_per_area =
@@ -103,7 +105,7 @@ Effect read_surface_load(const Field& params, const GeometrySpec&) {
       .ramp = optional_ramp(params)};
 }
 
-Effect read_line_load(const Field& params, const GeometrySpec& geometry) {
+Effect read_line_load(const Field& params, const GeometrySpec& geometry, const fs::path&) {
   params.expect_keys({"where", "force_per_length", "ramp"});
   return LineLoadEffect{
       .where = read_where(params.require("where", "a curve selection"), SelectionUse::Curve,
@@ -113,7 +115,7 @@ Effect read_line_load(const Field& params, const GeometrySpec& geometry) {
       .ramp = optional_ramp(params)};
 }
 
-Effect read_point_load(const Field& params, const GeometrySpec& geometry) {
+Effect read_point_load(const Field& params, const GeometrySpec& geometry, const fs::path&) {
   params.expect_keys({"where", "force", "ramp"});
   return PointLoadEffect{.where = read_where(params.require("where", "a point selection"),
                                              SelectionUse::Point, "point_load", geometry),
@@ -121,7 +123,7 @@ Effect read_point_load(const Field& params, const GeometrySpec& geometry) {
                          .ramp = optional_ramp(params)};
 }
 
-Effect read_dirichlet(const Field& params, const GeometrySpec& geometry) {
+Effect read_dirichlet(const Field& params, const GeometrySpec& geometry, const fs::path&) {
   params.expect_keys({"where", "components", "motion", "sigma", "penalty", "tolerance"});
   DirichletEffect effect;
   effect.where = read_where(params.require("where", "a selection"), SelectionUse::CurveOrPoint,
@@ -136,7 +138,7 @@ Effect read_dirichlet(const Field& params, const GeometrySpec& geometry) {
   return effect;
 }
 
-Effect read_pressure(const Field& params, const GeometrySpec& geometry) {
+Effect read_pressure(const Field& params, const GeometrySpec& geometry, const fs::path&) {
   params.expect_keys({"pressure", "ramp"});
   params.check(geometry.triangles(), "pressure acts on closed triangle-mesh surfaces",
                "geometry: {mesh: {generator: sphere, ...}} or a closed OBJ mesh");
@@ -144,7 +146,7 @@ Effect read_pressure(const Field& params, const GeometrySpec& geometry) {
                         .ramp = optional_ramp(params)};
 }
 
-Effect read_clamp(const Field& params, const GeometrySpec& geometry) {
+Effect read_clamp(const Field& params, const GeometrySpec& geometry, const fs::path&) {
   params.expect_keys({"where", "motion", "sigma", "penalty", "rotation_penalty"});
   ClampEffect effect;
   effect.where = read_where(params.require("where", "a curve selection"), SelectionUse::Curve,
@@ -156,9 +158,70 @@ Effect read_clamp(const Field& params, const GeometrySpec& geometry) {
   return effect;
 }
 
+Effect read_contact(const Field& params, const GeometrySpec& geometry, const fs::path&) {
+  params.check(geometry.triangles(), "contact acts on triangle-mesh shells",
+               "geometry: {mesh: {...}} (subdivision cloth has no contact yet)");
+  if (params.is_null()) return ContactEffect{};
+  params.expect_keys({"thickness", "gap", "self", "stiffness"});
+  ContactEffect effect;
+  if (const std::optional<Field> thickness = params.find("thickness")) {
+    effect.thickness = thickness->number();
+    thickness->check(*effect.thickness >= 0.0, "the thickness must be >= 0",
+                     "a distance in m, e.g. the shell's thickness");
+  }
+  effect.gap = optional_positive(params, "gap");
+  if (const std::optional<Field> self = params.find("self")) effect.self = self->boolean();
+  effect.stiffness = optional_positive(params, "stiffness");
+  return effect;
+}
+
+Effect read_collider(const Field& params, const GeometrySpec& geometry, const fs::path& scene_dir) {
+  params.check(geometry.triangles(), "colliders touch triangle-mesh shells",
+               "geometry: {mesh: {...}}");
+  constexpr std::string_view kShapes =
+      "{sphere: {center, radius}}, {plane: {point, normal}}, {box: {center, size}} or {obj: path}";
+  params.check(params.is_map() && params.entries().size() == 1, "a collider is one shape",
+               kShapes);
+  const auto entries = params.entries();
+  const auto& [shape, field] = entries.front();
+  ColliderEffect c;
+  if (shape == "sphere") {
+    field.expect_keys({"center", "radius", "subdivisions"});
+    c.shape = ColliderEffect::Shape::kSphere;
+    c.center = field.require("center", "[x, y, z] in m").numbers<3>(kVector);
+    c.radius = field.require("radius", "a length in m").positive_number();
+    if (const std::optional<Field> s = field.find("subdivisions")) c.subdivisions = s->integer_in(0, 6);
+  } else if (shape == "plane") {
+    field.expect_keys({"point", "normal", "side"});
+    c.shape = ColliderEffect::Shape::kPlane;
+    c.center = field.require("point", "[x, y, z] in m, a point of the plane").numbers<3>(kVector);
+    const Field normal = field.require("normal", "[nx, ny, nz], the side the shell is on");
+    c.normal = normal.numbers<3>(kVector);
+    const double length = std::hypot(c.normal[0], c.normal[1], c.normal[2]);
+    normal.check(length > 0.0 && std::isfinite(length), "the normal must be a non-zero vector",
+                 "e.g. [0, 0, 1]");
+    for (double& n : c.normal) n /= length;
+    c.side = optional_positive(field, "side");
+  } else if (shape == "box") {
+    field.expect_keys({"center", "size"});
+    c.shape = ColliderEffect::Shape::kBox;
+    c.center = field.require("center", "[x, y, z] in m").numbers<3>(kVector);
+    const Field size = field.require("size", "[sx, sy, sz] in m");
+    c.size = size.numbers<3>(kVector);
+    size.check(c.size[0] > 0.0 && c.size[1] > 0.0 && c.size[2] > 0.0,
+               "every edge length must be > 0");
+  } else if (shape == "obj") {
+    c.shape = ColliderEffect::Shape::kObj;
+    c.obj = read_existing_path(field, scene_dir);
+  } else {
+    params.fail("unknown collider shape '" + shape + "'", kShapes);
+  }
+  return c;
+}
+
 /// How to read each effect, in the order of kEffectNames (and of the Effect variant).
 struct EffectReader {
-  Effect (*read)(const Field& params, const GeometrySpec& geometry);
+  Effect (*read)(const Field& params, const GeometrySpec& geometry, const fs::path& scene_dir);
   bool once;  ///< may appear at most once in a scene
 };
 
@@ -171,6 +234,8 @@ constexpr std::array<EffectReader, kEffectNames.size()> kEffectReaders{{
     {read_dirichlet, false},
     {read_clamp, false},
     {read_pressure, false},
+    {read_contact, true},
+    {read_collider, false},
 }};
 
 std::string known_effects() {
@@ -181,10 +246,12 @@ std::string known_effects() {
 
 }  // namespace
 
-std::vector<Effect> read_effects(const Field& effects, const GeometrySpec& geometry) {
+std::vector<Effect> read_effects(const Field& effects, const GeometrySpec& geometry,
+                                 const fs::path& scene_dir) {
   std::vector<Effect> out;
   if (effects.is_null()) return out;  // `effects:` with nothing: only the elastic energy
   std::array<int, kEffectNames.size()> first_line{};  // line of the first use, 0 if none
+  std::optional<Field> pending_collider;  // a collider given before any contact effect
   for (const Field& item : effects.items()) {
     // `- inertia` names the effect in the item itself; `- gravity: [..]` in its only key.
     std::string name;
@@ -209,8 +276,14 @@ std::vector<Effect> read_effects(const Field& effects, const GeometrySpec& geome
       item.fail(name + " may appear only once (first given at line " + std::to_string(first) + ")");
     }
     if (first == 0) first = item.line();
-    out.push_back(kEffectReaders[index].read(*params, geometry));
+    out.push_back(kEffectReaders[index].read(*params, geometry, scene_dir));
+    if (std::holds_alternative<ColliderEffect>(out.back()) && first_line[8] == 0 &&
+        !pending_collider)
+      pending_collider = item;
   }
+  if (pending_collider && first_line[8] == 0)
+    pending_collider->fail("a collider needs a `contact` effect",
+                           "add `- contact` (or `- contact: {gap: ..., self: false}`) to effects");
   return out;
 }
 

@@ -220,7 +220,7 @@ Scene parse_scene(const std::filesystem::path& file) {
               triangle_material ? "clyde-orthotropic or isotropic-svk, or geometry: {mesh: {...}}"
                                 : "neo-hookean or st-venant-kirchhoff, or geometry: {cage: {...}}");
   if (const auto effects = root.find("effects"))
-    scene.effects = read_effects(*effects, scene.geometry);
+    scene.effects = read_effects(*effects, scene.geometry, scene_dir);
   if (const auto initial = root.find("initial_state")) {
     scene.initial_state = read_initial_state(*initial, scene_dir);
   }
@@ -246,6 +246,15 @@ Scene parse_scene(const std::filesystem::path& file) {
           .fail("a progressive run starts on the coarsest level, not from a checkpoint of the "
                 "finest",
                 "no initial_state.checkpoint, or integrator: quasistatic");
+    const bool contact = std::any_of(scene.effects.begin(), scene.effects.end(), [](const Effect& e) {
+      return std::holds_alternative<ContactEffect>(e);
+    });
+    if (contact)
+      root.require("time", "")
+          .require("integrator", "")
+          .fail("contact in a progressive run needs safe refinement, which mlshell does not have "
+                "yet (docs/contact.md)",
+                "integrator: quasistatic");
   }
   if (const auto probes = root.find("probes")) scene.probes = read_probes(*probes, scene.geometry);
   if (const auto output = root.find("output")) scene.output = read_output(*output);

@@ -34,11 +34,13 @@ Where read_where(const Field& where, SelectionUse use, std::string_view who,
                  const GeometrySpec& geometry);
 
 /// Effect names as scenes write them, in the order of the Effect variant's alternatives.
-inline constexpr std::array<std::string_view, 8> kEffectNames{
-    "inertia",    "gravity",   "surface_load", "line_load",
-    "point_load", "dirichlet", "clamp",        "pressure"};
+inline constexpr std::array<std::string_view, 10> kEffectNames{
+    "inertia",   "gravity", "surface_load", "line_load", "point_load",
+    "dirichlet", "clamp",   "pressure",     "contact",   "collider"};
 static_assert(std::variant_size_v<Effect> == kEffectNames.size());
 
-std::vector<Effect> read_effects(const Field& effects, const GeometrySpec& geometry);
+/// The `effects:` list; paths (a collider's obj) are relative to `scene_dir`.
+std::vector<Effect> read_effects(const Field& effects, const GeometrySpec& geometry,
+                                 const std::filesystem::path& scene_dir);
 
 }  // namespace mlshell::scene_reading

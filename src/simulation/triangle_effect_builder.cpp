@@ -7,6 +7,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "mlshell/contact/collider_meshes.hpp"
+#include "mlshell/contact/contact_term.hpp"
 #include "mlshell/effect_builder.hpp"
 #include "mlshell/effects.hpp"
 #include "mlshell/triangle/triangle_effects.hpp"
@@ -56,6 +58,49 @@ std::vector<std::pair<int, double>> vertex_weights(const TriangleDiscretization&
 std::vector<int> curve_vertices(const TriangleDiscretization& disc, const Where& where,
                                 const CageFrame& frame) {
   return select_vertices(disc, std::get<CurveSelection>(where.selection), frame, where.text);
+}
+
+/// The contact term of the scene's `contact` effect with all its colliders (contact_term.hpp).
+std::unique_ptr<ContactTerm> build_contact_term(const Scene& scene, const ContactEffect& c,
+                                                const TriangleDiscretization& disc,
+                                                const ParallelLayout& layout,
+                                                double shell_thickness,
+                                                double membrane_stiffness) {
+  const TriangleMesh& mesh = disc.mesh();
+  Point3 lo = Point3::Constant(INFINITY), hi = Point3::Constant(-INFINITY);
+  for (const Point3& X : mesh.points) lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
+  double area = 0.0, edges = 0.0;
+  for (const Triangle& t : mesh.triangles) {
+    const Point3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &d = mesh.points[t[2]];
+    area += 0.5 * (b - a).cross(d - a).norm();
+    edges += (b - a).norm() + (d - b).norm() + (a - d).norm();
+  }
+  const double diagonal = (hi - lo).norm(), edge_length = edges / (3.0 * mesh.num_triangles());
+  ContactSettings settings;
+  settings.barrier = ContactBarrier::from(c.thickness.value_or(shell_thickness),
+                                          c.gap.value_or(1e-3 * diagonal));
+  settings.self_contact = c.self;
+  settings.stiffness = c.stiffness.value_or(0.0);
+  settings.average_mass = scene.material.density * area / mesh.num_points();
+  settings.bbox_diagonal = diagonal;
+  // The force per vertex: the distributed loads' share, at least that of a membrane strained
+  // by 10⁻⁴ ĝ/ℓ over an edge (for scenes driven by motions alone).
+  double per_area = 0.0;
+  for (const Effect& e : scene.effects) {
+    if (const auto* g = std::get_if<GravityEffect>(&e))
+      per_area += scene.material.density * std::hypot(g->acceleration[0], g->acceleration[1], g->acceleration[2]);
+    else if (const auto* s = std::get_if<SurfaceLoadEffect>(&e))
+      per_area += std::hypot(s->force_per_area[0], s->force_per_area[1], s->force_per_area[2]);
+    else if (const auto* p = std::get_if<PressureEffect>(&e))
+      per_area += std::abs(p->pressure);
+  }
+  settings.vertex_force = std::max(per_area * area / mesh.num_points(),
+                                   1e-4 * membrane_stiffness * settings.barrier.gap);
+  std::vector<TriangleMesh> obstacles;
+  for (const Effect& e : scene.effects)
+    if (const auto* collider = std::get_if<ColliderEffect>(&e))
+      obstacles.push_back(make_collider_mesh(*collider, lo, hi, edge_length));
+  return std::make_unique<ContactTerm>("contact", mesh, layout, std::move(obstacles), settings);
 }
 
 }  // namespace
@@ -205,7 +250,10 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
         throw SceneError(message.str());
       }
       problem->add_term(std::move(term));
-    }
+    } else if (const auto* c = std::get_if<ContactEffect>(&effect)) {
+      problem->add_term(build_contact_term(scene, *c, disc, layout, params.thickness,
+                                           scale.membrane_stiffness));
+    }  // colliders: part of the contact term
   });
   return problem;
 }

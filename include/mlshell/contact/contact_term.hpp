@@ -1,0 +1,146 @@
+// IPC barrier contact of a triangle shell with itself and with static obstacles (paper 2 §3;
+// IPC, Li et al. 2020; Codimensional IPC, Li et al. 2021), on distributed vectors.
+//
+// The contact surface is the shell's mesh (its vertices are the unknowns) followed by the
+// obstacles' triangles (fixed, the same on every rank). The energy is
+//   B(x) = κ Σ_{(v, f)} b_ξ(d_PT(x_v, x_f)) + κ Σ_{(a, b)} m_ab(x) b_ξ(d_EE(x_a, x_b))
+// over the point–triangle and edge–edge pairs closer than ξ + ĝ, with the offset barrier b_ξ of
+// barrier.hpp and the edge–edge mollifier m of edge_edge_mollifier.hpp (barrier_pair_energy.hpp
+// has the pair's derivatives). Obstacle–obstacle pairs never count; shell–shell pairs only with
+// self-contact.
+//
+// Distribution. Every pair is evaluated once, by the rank that owns it. A rank owns the shell
+// vertices it owns as points, its elements (faces), and every edge whose lowest-ranked face is
+// its own, so each vertex of its own primitives is one of its local points. A point–triangle
+// pair belongs to its shell vertex's owner (to the face's owner when the vertex is an
+// obstacle's), an edge–edge pair to the owner of its lower-numbered shell edge. The rest of the
+// surface comes by a halo exchange, not by gathering it: the ranks share the bounding boxes of
+// their own primitives (over the step for CCD), and each sends every other rank the vertices of
+// its own primitives whose boxes come within ξ + ĝ of that rank's box. A halo vertex's gradient
+// is added into the global vector (add_nonlocal_gradient) and its Hessian blocks go in by
+// global index, other ranks' rows through PETSc's stash. On any number of ranks the pairs, as
+// global primitives, are the same.
+//
+// The Hessian's pattern follows the pairs (update_sparsity): the point pairs of the candidates
+// seen so far are the pattern (extend_sparsity); when a Hessian needs one outside it, the
+// pattern grows, sparsity_version() changes and LevelProblem rebuilds the matrix under the
+// same handle. It restarts from the current pairs when it holds over twice as many.
+//
+// CCD is max_step: the swept candidates of u → u + du, each by additive CCD (additive_ccd.hpp),
+// the smallest time of impact over all ranks.
+//
+// Stiffness κ: the scene's, or adaptive. IPC's κ_min from the lumped masses (adaptive_stiffness.hpp)
+// is the scale of inertia and far too soft for quasistatics (a sheet resting on a sphere sank
+// to the thickness ξ with it); the start is instead the κ at which one pair at half the gap,
+// d½ = (ξ + ĝ/2)², holds the force f a vertex must carry (ContactSettings::vertex_force):
+//   κ₀ = max(κ_min, f / (|b_ξ'(d½)| 2√d½)),   κ_max = 100 κ₀,
+// and after an accepted iterate κ doubles (up to κ_max) while the smallest gap is below 10⁻² ĝ
+// and shrinking (IPC's rule with its threshold raised from 10⁻⁹ L).
+#pragma once
+
+#include <petscmat.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "mlshell/contact/barrier/barrier.hpp"
+#include "mlshell/contact/broad_phase/contact_candidates.hpp"
+#include "mlshell/contact/ccd/additive_ccd.hpp"
+#include "mlshell/energy_term.hpp"
+#include "mlshell/triangle/triangle_mesh.hpp"
+
+namespace mlshell {
+
+struct ContactSettings {
+  ContactBarrier barrier;      ///< ξ and ĝ
+  bool self_contact = true;    ///< shell–shell pairs count
+  double stiffness = 0.0;      ///< κ > 0 fixed; 0: adaptive
+  double average_mass = 0.0;   ///< m̄ (kg), the average lumped nodal mass (adaptive κ)
+  double bbox_diagonal = 0.0;  ///< L (m), the scene's size (adaptive κ)
+  double vertex_force = 0.0;   ///< f (N), the force a vertex in contact must hold (adaptive κ)
+  AdditiveCcdOptions ccd;
+};
+
+/// What a contact term saw at the last prepared state (summed or reduced over the ranks).
+struct ContactStatistics {
+  long candidates = 0;                  ///< broad-phase pairs (owned)
+  long active = 0;                      ///< pairs closer than ξ + ĝ
+  double min_distance = INFINITY;       ///< the smallest pair distance (m), ∞ without pairs
+  double stiffness = 0.0;               ///< κ
+  long halo_points = 0;                 ///< vertices received from other ranks
+  long pattern_rebuilds = 0;            ///< Hessian patterns grown or restarted so far
+};
+
+class ContactTerm final : public EnergyTerm {
+ public:
+  /// `shell` is the level's mesh (the layout's discretization), `obstacles` static surfaces.
+  /// Throws std::invalid_argument for settings out of range.
+  ContactTerm(std::string name, const TriangleMesh& shell, const ParallelLayout& layout,
+              std::vector<TriangleMesh> obstacles, ContactSettings settings);
+
+  bool needs_prepare() const override { return true; }
+  /// The halo exchange and broad phase at u (proximity) or along u → u + du (swept).
+  PetscErrorCode prepare(Vec u, Vec du) override;
+  /// Energy, gradient and Hessian at the prepared u (`u` must be its local values).
+  PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
+                     std::vector<double>* grad, Mat hess) const override;
+  PetscErrorCode add_nonlocal_gradient(Vec g) const override;
+  bool limits_steps() const override { return true; }
+  /// The smallest time of impact of the prepared step, on this rank's pairs.
+  double max_step(const std::vector<double>& u, const std::vector<double>& du) const override;
+  /// Adaptive κ at the prepared, accepted u (collective).
+  void after_accept(const std::vector<double>& u) override;
+  void extend_sparsity(std::vector<std::array<int, 2>>& pairs) const override;
+  long sparsity_version() const override { return version_; }
+  PetscErrorCode update_sparsity() override;
+
+  /// The statistics of the prepared state, over all ranks (collective).
+  PetscErrorCode statistics(ContactStatistics* s) const;
+  /// The smallest squared pair distance among the prepared candidates, over all ranks
+  /// (collective); +∞ without candidates.
+  PetscErrorCode min_squared_distance(double* d) const;
+  const std::vector<TriangleMesh>& obstacles() const { return obstacles_; }
+  const ContactSettings& settings() const { return settings_; }
+  double stiffness() const { return kappa_; }
+
+ private:
+  struct Pair {
+    bool edge_edge;
+    std::array<int, 4> v;  ///< compact vertices (point–triangle: p, t0, t1, t2)
+  };
+  /// Positions of the pair's four vertices (at the prepared state, plus t·dx).
+  Vector12 stencil(const Pair& p, double t) const;
+  /// The pair's energy and, where not null, gradient and Hessian; +∞ for d ≤ ξ².
+  double pair_energy(const Pair& p, Vector12* grad, Matrix12* hess) const;
+  double squared_distance(const Pair& p) const;
+  void collect_pairs(const ContactCandidates& c);
+
+  const ParallelLayout& layout_;
+  std::vector<TriangleMesh> obstacles_;
+  ContactSettings settings_;
+  int num_shell_points_ = 0, num_shell_faces_ = 0, num_shell_edges_ = 0;
+  std::vector<Eigen::Vector3d> rest_;      ///< every surface vertex (shell, then obstacles)
+  ContactSurface surface_;                 ///< the whole surface (global ids)
+  std::vector<int> edge_owner_;            ///< owner of each shell edge
+  std::vector<int> own_vertices_, own_edges_, own_faces_;  ///< this rank's primitives
+  std::vector<int> own_box_points_;        ///< local indices of their vertices
+  double kappa_ = 0.0, kappa_max_ = 0.0, prev_min_distance_ = INFINITY;
+
+  // The prepared state, on the compact surface of the vertices this rank knows.
+  bool swept_ = false;
+  std::vector<Eigen::Vector3d> x_, dx_;
+  std::vector<int> vertex_id_, local_index_;  ///< compact → surface id, → local point (−1)
+  std::vector<PetscInt> block_index_;         ///< compact → PETSc block (−1: obstacle)
+  std::vector<Pair> pairs_;                   ///< this rank's candidate pairs
+  long halo_points_ = 0;
+  mutable std::vector<PetscInt> remote_rows_;
+  mutable std::vector<double> remote_values_;
+
+  std::vector<std::array<int, 2>> pattern_;  ///< natural point pairs of the Hessian's pattern
+  long version_ = 0, rebuilds_ = 0;
+};
+
+}  // namespace mlshell

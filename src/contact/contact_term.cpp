@@ -1,0 +1,451 @@
+// IPC contact on distributed vectors (contact_term.hpp).
+#include "mlshell/contact/contact_term.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "mlshell/contact/barrier/adaptive_stiffness.hpp"
+#include "mlshell/contact/barrier/barrier_pair_energy.hpp"
+#include "mlshell/contact/broad_phase/broad_phase.hpp"
+#include "mlshell/contact/distance/edge_edge.hpp"
+#include "mlshell/contact/distance/edge_edge_mollifier.hpp"
+#include "mlshell/contact/distance/point_triangle.hpp"
+
+namespace mlshell {
+
+namespace {
+
+using Box = Eigen::Matrix<double, 6, 1>;  // lo (3), hi (3)
+
+/// κ doubles while the smallest gap is below this fraction of ĝ and shrinking.
+constexpr double kCloseGap = 1e-2;
+
+Box empty_box() {
+  Box b;
+  b << INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY;
+  return b;
+}
+
+void grow(Box& b, const Eigen::Vector3d& p) {
+  b.head<3>() = b.head<3>().cwiseMin(p);
+  b.tail<3>() = b.tail<3>().cwiseMax(p);
+}
+
+bool overlap(const Box& a, const Box& b, double margin) {
+  for (int c = 0; c < 3; ++c)
+    if (a[c] > b[3 + c] + margin || b[c] > a[3 + c] + margin) return false;
+  return true;
+}
+
+}  // namespace
+
+ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const ParallelLayout& layout,
+                         std::vector<TriangleMesh> obstacles, ContactSettings settings)
+    : EnergyTerm(std::move(name)),
+      layout_(layout),
+      obstacles_(std::move(obstacles)),
+      settings_(settings) {
+  settings_.barrier = ContactBarrier::from(settings.barrier.thickness, settings.barrier.gap);
+  settings_.ccd.validate();
+  if (!(settings_.stiffness >= 0.0) || !std::isfinite(settings_.stiffness))
+    throw std::invalid_argument("contact: the stiffness must be finite and >= 0");
+  num_shell_points_ = shell.num_points();
+  num_shell_faces_ = shell.num_triangles();
+  std::vector<std::array<int, 3>> faces(shell.triangles.begin(), shell.triangles.end());
+  rest_.assign(shell.points.begin(), shell.points.end());
+  for (const TriangleMesh& o : obstacles_) {
+    const int offset = static_cast<int>(rest_.size());
+    rest_.insert(rest_.end(), o.points.begin(), o.points.end());
+    for (const Triangle& t : o.triangles) faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  }
+  surface_ = ContactSurface::from_faces(static_cast<int>(rest_.size()), std::move(faces));
+  // Shell edges come first: their vertices are below every obstacle vertex.
+  num_shell_edges_ = static_cast<int>(std::count_if(
+      surface_.edges.begin(), surface_.edges.end(),
+      [&](const auto& e) { return e[1] < num_shell_points_; }));
+  edge_owner_.assign(num_shell_edges_, std::numeric_limits<int>::max());
+  for (int f = 0; f < num_shell_faces_; ++f) {
+    const auto& t = surface_.faces[f];
+    for (int k = 0; k < 3; ++k) {
+      const std::array<int, 2> e{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])};
+      const auto it = std::lower_bound(surface_.edges.begin(), surface_.edges.end(), e);
+      int& owner = edge_owner_[it - surface_.edges.begin()];
+      owner = std::min(owner, layout_.face_owner(f));
+    }
+  }
+  const int rank = layout_.rank();
+  for (int l = 0; l < layout_.num_owned_points(); ++l) own_vertices_.push_back(layout_.local_points()[l]);
+  for (int e = 0; e < num_shell_edges_; ++e)
+    if (edge_owner_[e] == rank) own_edges_.push_back(e);
+  own_faces_ = layout_.local_elements();
+  std::vector<char> used(num_shell_points_, 0);
+  for (int v : own_vertices_) used[v] = 1;
+  for (int e : own_edges_)
+    for (int v : surface_.edges[e]) used[v] = 1;
+  for (int f : own_faces_)
+    for (int v : surface_.faces[f]) used[v] = 1;
+  for (int v = 0; v < num_shell_points_; ++v)
+    if (used[v]) {
+      const int l = layout_.local_of(v);
+      if (l < 0) throw std::logic_error("contact: a vertex of an own primitive is not local");
+      own_box_points_.push_back(l);
+    }
+  if (settings_.stiffness > 0.0) {
+    kappa_ = kappa_max_ = settings_.stiffness;
+  } else {
+    // One pair at half the gap holds the force per vertex: κ |b_ξ'(d½)| 2√d½ = f.
+    const double half = settings_.barrier.thickness + 0.5 * settings_.barrier.gap;
+    const double holding = std::abs(settings_.barrier.first_derivative(half * half)) * 2.0 * half;
+    kappa_ = std::max(min_barrier_stiffness(settings_.barrier, settings_.bbox_diagonal,
+                                            settings_.average_mass),
+                      settings_.vertex_force / holding);
+    kappa_max_ = 100.0 * kappa_;
+  }
+}
+
+PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
+  PetscFunctionBeginUser;
+  swept_ = du != nullptr;
+  std::vector<double> ul, dl;
+  PetscCall(layout_.to_local(u, ul));
+  if (swept_) PetscCall(layout_.to_local(du, dl));
+  const auto& points = layout_.local_points();
+  auto position = [&](int l) {
+    return Eigen::Vector3d(rest_[points[l]] + Eigen::Vector3d(ul[3 * l], ul[3 * l + 1], ul[3 * l + 2]));
+  };
+  auto motion = [&](int l) {
+    return swept_ ? Eigen::Vector3d(dl[3 * l], dl[3 * l + 1], dl[3 * l + 2])
+                  : Eigen::Vector3d::Zero();
+  };
+  const double reach = settings_.barrier.thickness + settings_.barrier.gap;
+  const int size = layout_.size(), rank = layout_.rank();
+
+  // Halo: every rank's box of its own primitives, then the vertices of own primitives that
+  // come within reach of another rank's box.
+  std::vector<double> received;  // (id, x, dx) per vertex
+  if (size > 1) {
+    Box mine = empty_box();
+    for (int l : own_box_points_) {
+      grow(mine, position(l));
+      grow(mine, position(l) + motion(l));
+    }
+    std::vector<double> boxes(6 * size);
+    PetscCallMPI(MPI_Allgather(mine.data(), 6, MPI_DOUBLE, boxes.data(), 6, MPI_DOUBLE,
+                               layout_.comm()));
+    // A margin of rounding on top of the reach: a pair at the reach has no energy anyway.
+    const double margin = reach * (1.0 + 1e-6) + 1e-12 * settings_.bbox_diagonal;
+    std::vector<std::vector<double>> send(size);
+    std::vector<int> marked(num_shell_points_, -1);  // the last rank a vertex was sent to
+    auto primitive_box = [&](const int* v, int n) {
+      Box b = empty_box();
+      for (int i = 0; i < n; ++i) {
+        const int l = layout_.local_of(v[i]);
+        grow(b, position(l));
+        grow(b, position(l) + motion(l));
+      }
+      return b;
+    };
+    for (int r = 0; r < size; ++r) {
+      if (r == rank) continue;
+      const Box other = Eigen::Map<const Box>(&boxes[6 * r]);
+      if (!(other[0] <= other[3])) continue;  // no primitives there
+      auto offer = [&](const int* v, int n) {
+        if (!overlap(primitive_box(v, n), other, margin)) return;
+        for (int i = 0; i < n; ++i) {
+          if (marked[v[i]] == r) continue;
+          marked[v[i]] = r;
+          const int l = layout_.local_of(v[i]);
+          const Eigen::Vector3d x = position(l), d = motion(l);
+          send[r].insert(send[r].end(), {double(v[i]), x[0], x[1], x[2], d[0], d[1], d[2]});
+        }
+      };
+      for (int v : own_vertices_) offer(&v, 1);
+      for (int e : own_edges_) offer(surface_.edges[e].data(), 2);
+      for (int f : own_faces_) offer(surface_.faces[f].data(), 3);
+    }
+    std::vector<int> send_counts(size), recv_counts(size), send_displs(size, 0),
+        recv_displs(size, 0);
+    for (int r = 0; r < size; ++r) send_counts[r] = static_cast<int>(send[r].size());
+    PetscCallMPI(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT,
+                              layout_.comm()));
+    std::vector<double> flat;
+    for (int r = 0; r < size; ++r) {
+      if (r > 0) {
+        send_displs[r] = send_displs[r - 1] + send_counts[r - 1];
+        recv_displs[r] = recv_displs[r - 1] + recv_counts[r - 1];
+      }
+      flat.insert(flat.end(), send[r].begin(), send[r].end());
+    }
+    received.resize(recv_displs[size - 1] + recv_counts[size - 1]);
+    PetscCallMPI(MPI_Alltoallv(flat.data(), send_counts.data(), send_displs.data(), MPI_DOUBLE,
+                               received.data(), recv_counts.data(), recv_displs.data(), MPI_DOUBLE,
+                               layout_.comm()));
+  }
+
+  // The compact surface: known shell vertices in natural order, then the obstacles'.
+  const int total = static_cast<int>(rest_.size());
+  std::vector<int> compact(total, -1), halo_of(num_shell_points_, -1);
+  for (std::size_t k = 0; k < received.size(); k += 7) halo_of[static_cast<int>(received[k])] = k;
+  x_.clear(), dx_.clear(), vertex_id_.clear(), local_index_.clear(), block_index_.clear();
+  halo_points_ = 0;
+  for (int v = 0; v < total; ++v) {
+    Eigen::Vector3d x, d = Eigen::Vector3d::Zero();
+    int l = -1;
+    if (v >= num_shell_points_) {
+      x = rest_[v];
+    } else if ((l = layout_.local_of(v)) >= 0) {
+      x = position(l), d = motion(l);
+    } else if (halo_of[v] >= 0) {
+      const double* h = &received[halo_of[v]];
+      x = Eigen::Vector3d(h[1], h[2], h[3]), d = Eigen::Vector3d(h[4], h[5], h[6]);
+      ++halo_points_;
+    } else {
+      continue;
+    }
+    compact[v] = static_cast<int>(x_.size());
+    x_.push_back(x), dx_.push_back(d), vertex_id_.push_back(v), local_index_.push_back(l);
+    block_index_.push_back(v < num_shell_points_ ? layout_.petsc_of(v) : -1);
+  }
+  ContactSurface known;
+  known.num_vertices = static_cast<int>(x_.size());
+  std::vector<int> edge_id, face_id;
+  for (int e = 0; e < static_cast<int>(surface_.edges.size()); ++e) {
+    const auto& [a, b] = surface_.edges[e];
+    if (compact[a] < 0 || compact[b] < 0) continue;
+    known.edges.push_back({compact[a], compact[b]});
+    edge_id.push_back(e);
+  }
+  for (int f = 0; f < static_cast<int>(surface_.faces.size()); ++f) {
+    const auto& t = surface_.faces[f];
+    if (compact[t[0]] < 0 || compact[t[1]] < 0 || compact[t[2]] < 0) continue;
+    known.faces.push_back({compact[t[0]], compact[t[1]], compact[t[2]]});
+    face_id.push_back(f);
+  }
+
+  ContactCandidates candidates;
+  if (swept_) {
+    std::vector<Eigen::Vector3d> x1(x_.size());
+    for (std::size_t i = 0; i < x_.size(); ++i) x1[i] = x_[i] + dx_[i];
+    candidates = find_swept_candidates(known, x_, x1, settings_.barrier.thickness);
+  } else {
+    candidates = find_proximity_candidates(known, x_, reach);
+  }
+
+  // This rank's pairs (contact_term.hpp's ownership).
+  pairs_.clear();
+  const auto mine_point = [&](int v) {
+    const int l = layout_.local_of(v);
+    return l >= 0 && l < layout_.num_owned_points();
+  };
+  for (const auto& [cv, cf] : candidates.point_triangle) {
+    const int v = vertex_id_[cv], f = face_id[cf];
+    const bool shell_v = v < num_shell_points_, shell_f = f < num_shell_faces_;
+    if (!shell_v && !shell_f) continue;
+    if (shell_v && shell_f && !settings_.self_contact) continue;
+    if (shell_v ? !mine_point(v) : layout_.face_owner(f) != rank) continue;
+    const auto& t = known.faces[cf];
+    pairs_.push_back({false, {cv, t[0], t[1], t[2]}});
+  }
+  for (const auto& [ca, cb] : candidates.edge_edge) {
+    const int a = edge_id[ca], b = edge_id[cb];
+    const bool shell_a = a < num_shell_edges_, shell_b = b < num_shell_edges_;
+    if (!shell_a && !shell_b) continue;
+    if (shell_a && shell_b && !settings_.self_contact) continue;
+    const int owner_edge = shell_a ? a : b;  // edge ids are sorted: a < b
+    if (edge_owner_[owner_edge] != rank) continue;
+    const auto &ea = known.edges[ca], &eb = known.edges[cb];
+    pairs_.push_back({true, {ea[0], ea[1], eb[0], eb[1]}});
+  }
+  PetscFunctionReturn(0);
+}
+
+Vector12 ContactTerm::stencil(const Pair& p, double t) const {
+  Vector12 x;
+  for (int i = 0; i < 4; ++i) x.segment<3>(3 * i) = x_[p.v[i]] + t * dx_[p.v[i]];
+  return x;
+}
+
+double ContactTerm::squared_distance(const Pair& p) const {
+  const auto &a = x_[p.v[0]], &b = x_[p.v[1]], &c = x_[p.v[2]], &d = x_[p.v[3]];
+  return p.edge_edge ? edge_edge_distance(a, b, c, d) : point_triangle_distance(a, b, c, d);
+}
+
+double ContactTerm::pair_energy(const Pair& p, Vector12* grad, Matrix12* hess) const {
+  const auto &a = x_[p.v[0]], &b = x_[p.v[1]], &c = x_[p.v[2]], &d = x_[p.v[3]];
+  const ContactBarrier& barrier = settings_.barrier;
+  const bool derivatives = grad || hess;
+  Vector12 gd = Vector12::Zero();
+  Matrix12 hd = Matrix12::Zero();
+  const bool project = projects_hessian();
+  if (!p.edge_edge) {
+    const auto type = point_triangle_distance_type(a, b, c, d);
+    const double dist = point_triangle_distance(a, b, c, d, type, derivatives ? &gd : nullptr,
+                                                hess ? &hd : nullptr);
+    if (dist >= barrier.activation_squared_distance()) return 0.0;
+    return barrier_pair_energy<12>(kappa_, barrier, dist, gd, hd, grad, hess, project);
+  }
+  const auto type = edge_edge_distance_type(a, b, c, d);
+  const double dist =
+      edge_edge_distance(a, b, c, d, type, derivatives ? &gd : nullptr, hess ? &hd : nullptr);
+  if (dist >= barrier.activation_squared_distance()) return 0.0;
+  const int *v = p.v.data();
+  const double eps_x = edge_edge_mollifier_threshold(
+      rest_[vertex_id_[v[0]]], rest_[vertex_id_[v[1]]], rest_[vertex_id_[v[2]]],
+      rest_[vertex_id_[v[3]]]);
+  if (!edge_edge_mollifier_active(a, b, c, d, eps_x))
+    return barrier_pair_energy<12>(kappa_, barrier, dist, gd, hd, grad, hess, project);
+  Vector12 gm = Vector12::Zero();
+  Matrix12 hm = Matrix12::Zero();
+  const double m = edge_edge_mollifier(a, b, c, d, eps_x, derivatives ? &gm : nullptr,
+                                       hess ? &hm : nullptr);
+  return mollified_barrier_pair_energy(kappa_, barrier, dist, gd, hd, m, gm, hm, grad, hess,
+                                       project);
+}
+
+PetscErrorCode ContactTerm::add(const std::vector<double>&, CompensatedSum& energy,
+                                std::vector<double>* grad, Mat hess) const {
+  PetscFunctionBeginUser;
+  PetscCheck(!swept_, PETSC_COMM_SELF, PETSC_ERR_ORDER,
+             "contact: add() after a swept prepare(); prepare(u, nullptr) first");
+  remote_rows_.clear(), remote_values_.clear();
+  Vector12 g;
+  Matrix12 h;
+  std::vector<PetscInt> rows;
+  std::vector<int> which;
+  std::vector<double> block;
+  for (const Pair& p : pairs_) {
+    const double e = pair_energy(p, grad ? &g : nullptr, hess ? &h : nullptr);
+    energy.add(e);
+    if (e == 0.0 || !std::isfinite(e)) continue;
+    if (grad)
+      for (int i = 0; i < 4; ++i) {
+        const int c = p.v[i];
+        if (local_index_[c] >= 0) {
+          for (int k = 0; k < 3; ++k) (*grad)[3 * local_index_[c] + k] += g[3 * i + k];
+        } else if (block_index_[c] >= 0) {
+          remote_rows_.push_back(block_index_[c]);
+          remote_values_.insert(remote_values_.end(), {g[3 * i], g[3 * i + 1], g[3 * i + 2]});
+        }
+      }
+    if (hess) {
+      rows.clear(), which.clear();
+      for (int i = 0; i < 4; ++i)
+        if (block_index_[p.v[i]] >= 0) rows.push_back(block_index_[p.v[i]]), which.push_back(i);
+      const int n = static_cast<int>(rows.size());
+      block.assign(9 * n * n, 0.0);
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c)
+              block[(3 * a + r) * 3 * n + 3 * b + c] = h(3 * which[a] + r, 3 * which[b] + c);
+      PetscCall(MatSetValuesBlocked(hess, n, rows.data(), n, rows.data(), block.data(), ADD_VALUES));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactTerm::add_nonlocal_gradient(Vec g) const {
+  PetscFunctionBeginUser;
+  if (!remote_rows_.empty())
+    PetscCall(VecSetValuesBlocked(g, static_cast<PetscInt>(remote_rows_.size()),
+                                  remote_rows_.data(), remote_values_.data(), ADD_VALUES));
+  PetscCall(VecAssemblyBegin(g));
+  PetscCall(VecAssemblyEnd(g));
+  PetscFunctionReturn(0);
+}
+
+double ContactTerm::max_step(const std::vector<double>&, const std::vector<double>&) const {
+  if (!swept_) throw std::logic_error("contact: max_step() needs prepare(u, du)");
+  double alpha = 1.0;
+  for (const Pair& p : pairs_) {
+    const Vector12 x0 = stencil(p, 0.0), dx = stencil(p, 1.0) - x0;
+    const CcdResult r =
+        p.edge_edge
+            ? edge_edge_ccd(x0, dx, settings_.barrier.thickness, alpha, settings_.ccd)
+            : point_triangle_ccd(x0, dx, settings_.barrier.thickness, alpha, settings_.ccd);
+    if (r.may_collide) alpha = std::min(alpha, r.toi);
+  }
+  return alpha;
+}
+
+PetscErrorCode ContactTerm::min_squared_distance(double* d) const {
+  PetscFunctionBeginUser;
+  double mine = INFINITY;
+  for (const Pair& p : pairs_) mine = std::min(mine, squared_distance(p));
+  PetscCallMPI(MPI_Allreduce(&mine, d, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
+  PetscFunctionReturn(0);
+}
+
+void ContactTerm::after_accept(const std::vector<double>&) {
+  double d = INFINITY;
+  PetscCallAbort(layout_.comm(), min_squared_distance(&d));
+  if (settings_.stiffness == 0.0 && std::isfinite(d) && std::isfinite(prev_min_distance_))
+    kappa_ = update_barrier_stiffness(prev_min_distance_, d, kappa_max_, kappa_,
+                                      settings_.bbox_diagonal, settings_.barrier.thickness,
+                                      kCloseGap * settings_.barrier.gap / settings_.bbox_diagonal);
+  prev_min_distance_ = d;
+  if (getenv("MLSHELL_CONTACT_DEBUG")) PetscPrintf(layout_.comm(), "contact: kappa %g (max %g) dmin %g pairs %zu\n", kappa_, kappa_max_, std::sqrt(d), pairs_.size());
+}
+
+void ContactTerm::extend_sparsity(std::vector<std::array<int, 2>>& pairs) const {
+  pairs.insert(pairs.end(), pattern_.begin(), pattern_.end());
+}
+
+PetscErrorCode ContactTerm::update_sparsity() {
+  PetscFunctionBeginUser;
+  std::vector<int> mine;  // natural point pairs (a < b), flattened
+  for (const Pair& p : pairs_) {
+    // Point–triangle: the point with the triangle; edge–edge: each end with each end.
+    const int first = p.edge_edge ? 2 : 1;
+    for (int i = 0; i < first; ++i)
+      for (int j = first; j < 4; ++j) {
+        const int a = vertex_id_[p.v[i]], b = vertex_id_[p.v[j]];
+        if (a >= num_shell_points_ || b >= num_shell_points_) continue;
+        mine.push_back(std::min(a, b)), mine.push_back(std::max(a, b));
+      }
+  }
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(layout_.size()), displs(layout_.size(), 0);
+  PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, layout_.comm()));
+  for (int r = 1; r < layout_.size(); ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  std::vector<int> all(displs.back() + counts.back());
+  PetscCallMPI(MPI_Allgatherv(mine.data(), count, MPI_INT, all.data(), counts.data(),
+                              displs.data(), MPI_INT, layout_.comm()));
+  std::vector<std::array<int, 2>> current;
+  for (std::size_t k = 0; k < all.size(); k += 2) current.push_back({all[k], all[k + 1]});
+  std::sort(current.begin(), current.end());
+  current.erase(std::unique(current.begin(), current.end()), current.end());
+  if (std::includes(pattern_.begin(), pattern_.end(), current.begin(), current.end()) &&
+      pattern_.size() <= 2 * current.size() + 64)
+    PetscFunctionReturn(0);
+  if (pattern_.size() > 2 * current.size() + 64) {
+    pattern_ = std::move(current);  // restart from the current pairs
+  } else {
+    std::vector<std::array<int, 2>> grown;
+    std::set_union(pattern_.begin(), pattern_.end(), current.begin(), current.end(),
+                   std::back_inserter(grown));
+    pattern_ = std::move(grown);
+  }
+  ++version_, ++rebuilds_;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactTerm::statistics(ContactStatistics* s) const {
+  PetscFunctionBeginUser;
+  long mine[3] = {static_cast<long>(pairs_.size()), 0, halo_points_}, sums[3];
+  double dmin = INFINITY;
+  for (const Pair& p : pairs_) {
+    const double d = squared_distance(p);
+    dmin = std::min(dmin, d);
+    if (d < settings_.barrier.activation_squared_distance()) ++mine[1];
+  }
+  PetscCallMPI(MPI_Allreduce(mine, sums, 3, MPI_LONG, MPI_SUM, layout_.comm()));
+  double global;
+  PetscCallMPI(MPI_Allreduce(&dmin, &global, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
+  *s = ContactStatistics{sums[0], sums[1], std::sqrt(global), kappa_, sums[2], rebuilds_};
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell

