@@ -1,6 +1,6 @@
 """Renders one frame of an mlshell result folder with ParaView: the deformed surface (the XDMF
 series' geometry) coloured by the displacement magnitude, smooth-shaded, seen from above at an
-angle, with a colour bar; --zscale exaggerates z (the out-of-plane wrinkles of a stiff plate),
+angle, with a colour bar, and the colliders of a contact scene (colliders.obj) in grey; --zscale exaggerates z (the out-of-plane wrinkles of a stiff plate),
 --elev/--azim turn the view.
 
   xvfb-run -a pvpython examples/render.py out/drape                  -> out/drape/final.png
@@ -84,6 +84,14 @@ def main():
     lut.ApplyPreset("Viridis (matplotlib)", True)
     lut.RescaleTransferFunction(0.0, max(umax * factor, 1e-30))
     shown.Specular, shown.SpecularPower = 0.25, 40.0
+    # Contact scenes write their colliders once: grey, behind the shell.
+    colliders = folder / "colliders.obj"
+    if colliders.exists():
+        obstacle = pv.Transform(Input=pv.OpenDataFile(str(colliders)))
+        obstacle.Transform.Scale = [1.0, 1.0, a.zscale]
+        solid = pv.Show(obstacle, view)
+        solid.ColorArrayName = ['POINTS', '']
+        solid.AmbientColor = solid.DiffuseColor = [0.72, 0.72, 0.74]
     bar = pv.GetScalarBar(lut, view)
     bar.Title, bar.ComponentTitle = f"displacement magnitude [{units}]", ""
     bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]

@@ -92,8 +92,12 @@ DoglegQp::~DoglegQp() {
 
 PetscErrorCode DoglegQp::set_operator(Mat H) {
   PetscFunctionBeginUser;
-  if (H != H_) PetscCall(MatDestroy(&shifted_));
+  // A new matrix, or a new pattern under the same handle (contact pairs: LevelProblem::hessian).
+  PetscObjectState nonzero_state;
+  PetscCall(MatGetNonzeroState(H, &nonzero_state));
+  if (H != H_ || nonzero_state != nonzero_state_) PetscCall(MatDestroy(&shifted_));
   H_ = H;
+  nonzero_state_ = nonzero_state;
   PetscCall(KSPSetOperators(ksp_, H, H));
   factored_ = factor_failed_ = indefinite_ = false;
   shift_ = 0.0;

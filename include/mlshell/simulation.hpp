@@ -42,6 +42,8 @@
 
 namespace mlshell {
 
+class ContactTerm;
+
 struct SimulationOptions {
   bool evaluate_only = false;
   int gauss_points = 3;
@@ -172,6 +174,16 @@ class Simulation {
   PetscErrorCode audit_frame(const FrameSeries& series, Vec u, int n, double t, long* pairs,
                              std::string* message);
   long audited_frames_ = 0, intersecting_pairs_ = 0;
+  /// The finest level's contact term (null without contact; contact_run.cpp): its colliders
+  /// are audited with every frame and written once as colliders.obj.
+  ContactTerm* contact_ = nullptr;
+  /// Contact scenes: refuses a solver that ignores CCD's step limit (exit 2).
+  void check_contact_solver() const;
+  /// Contact scenes at the first frame: the shell must start farther than the thickness ξ from
+  /// itself and the colliders (else SceneError); writes colliders.obj.
+  PetscErrorCode start_contact();
+  /// The contact section of summary.json (collective; null without contact).
+  PetscErrorCode contact_summary(Json* out) const;
   std::string audit_message_;  ///< of the last frame audited, if it intersects
   std::optional<SpectrumEstimate> spectrum_;
   PetscLogStage stage_setup_ = 0, stage_solve_ = 0, stage_output_ = 0;

@@ -96,6 +96,7 @@ class DoglegQp final : public TrustRegionQp {
   bool iterative_ = false;
   KSP ksp_ = nullptr, ksp_shifted_ = nullptr, active_ = nullptr;  // H, H + λI, the one in use
   Mat H_ = nullptr, shifted_ = nullptr;
+  PetscObjectState nonzero_state_ = 0;  ///< H_'s when shifted_ was made
   PetscReal shift_ = 0.0;       // λ of the factorised H + λI (0: H itself)
   PetscReal last_shift_ = 0.0;  // the last λ that made H + λI definite (0: none yet)
   bool factored_ = false, factor_failed_ = false, indefinite_ = false;

@@ -386,7 +386,6 @@ void ContactTerm::after_accept(const std::vector<double>&) {
                                       settings_.bbox_diagonal, settings_.barrier.thickness,
                                       kCloseGap * settings_.barrier.gap / settings_.bbox_diagonal);
   prev_min_distance_ = d;
-  if (getenv("MLSHELL_CONTACT_DEBUG")) PetscPrintf(layout_.comm(), "contact: kappa %g (max %g) dmin %g pairs %zu\n", kappa_, kappa_max_, std::sqrt(d), pairs_.size());
 }
 
 void ContactTerm::extend_sparsity(std::vector<std::array<int, 2>>& pairs) const {

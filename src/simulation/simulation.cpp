@@ -14,6 +14,7 @@
 #include "mlshell/output_files.hpp"
 #include "mlshell/step_failure.hpp"
 #include "mlshell/subdivision/level_hierarchy.hpp"
+#include "mlshell/contact/contact_term.hpp"
 #include "mlshell/triangle/triangle_effect_builder.hpp"
 #include "mlshell/triangle/triangle_levels.hpp"
 #include "mlshell/triangle/triangle_selection.hpp"
@@ -192,6 +193,10 @@ Simulation::Simulation(MPI_Comm comm, Scene scene, SimulationOptions options)
   for (int l = 0; l < multilevel_->num_levels(); ++l)
     for (const auto& t : multilevel_->level(l).terms())
       t->set_hessian_projection(term_hessian_projection(*options_.solver, t->name()));
+  if ((contact_ = problem_->find_term<ContactTerm>())) {
+    check_contact_solver();
+    options_.audit_intersections = true;  // no contact scene writes an unaudited frame
+  }
   PetscCallAbort(comm, layout_->create_vector(&u_));
   PetscCallAbort(comm, VecDuplicate(u_, &v_));
   PetscCallAbort(comm, VecZeroEntries(v_));
@@ -541,8 +546,12 @@ PetscErrorCode Simulation::run(int* status) {
       throw SceneError(scene_.file.string() + ": geometry.mesh: the " +
                        (first_step_ == 0 ? std::string("input surface")
                                          : "checkpoint's state") +
-                       " intersects itself: " + message);
+                       (contact_ && !contact_->obstacles().empty()
+                            ? " intersects itself or a collider: "
+                            : " intersects itself: ") +
+                       message);
   }
+  if (contact_) PetscCall(start_contact());
   if (first_step_ == 0) PetscCall(write_frame(0, 0.0, true, true));
   SolveReport report;
   bool intersected = false;
@@ -589,8 +598,10 @@ PetscErrorCode Simulation::run(int* status) {
                             report.converged));
     }
     if (!audit_message_.empty()) {  // write_frame's audit found intersecting triangles
-      PetscCall(PetscPrintf(comm_, "mlshell: frame %d (t = %g s) intersects itself: %s; stopping\n",
-                            n, n * scene_.time.dt, audit_message_.c_str()));
+      PetscCall(PetscPrintf(comm_, "mlshell: frame %d (t = %g s) intersects itself%s: %s; stopping\n",
+                            n, n * scene_.time.dt,
+                            contact_ && !contact_->obstacles().empty() ? " or a collider" : "",
+                            audit_message_.c_str()));
       intersected = true;
       break;
     }

@@ -18,6 +18,7 @@
 #include "mlshell/simulation.hpp"
 
 #include "mlshell/contact/audit/intersection_audit.hpp"
+#include "mlshell/contact/contact_term.hpp"
 #include "mlshell/triangle/triangle_discretization.hpp"
 #include "mlshell/unused_options.hpp"
 
@@ -148,6 +149,17 @@ PetscErrorCode Simulation::audit_frame(const FrameSeries& series, Vec state, int
     for (size_t i = 0; i < x.size(); ++i) x[i] += Point3(u[3 * i], u[3 * i + 1], u[3 * i + 2]);
     const IntersectionReport r = self_intersections(x, triangles->mesh().triangles, 1);
     found = {r.pairs, r.pairs ? r.examples[0][0] : -1, r.pairs ? r.examples[0][1] : -1};
+    // Contact scenes: the shell against each collider too (the first hit named as
+    // (shell triangle, -1 - collider)).
+    if (contact_ && series.disc == disc_)
+      for (std::size_t k = 0; k < contact_->obstacles().size(); ++k) {
+        const TriangleMesh& o = contact_->obstacles()[k];
+        const IntersectionReport c =
+            intersections_between(x, triangles->mesh().triangles, o.points, o.triangles, 1);
+        if (c.pairs > 0 && found[0] == 0)
+          found[1] = c.examples[0][0], found[2] = -1 - static_cast<long>(k);
+        found[0] += c.pairs;
+      }
   }
   PetscCallMPI(MPI_Bcast(found.data(), 3, MPI_LONG, 0, comm_));
   ++audited_frames_;
@@ -155,8 +167,10 @@ PetscErrorCode Simulation::audit_frame(const FrameSeries& series, Vec state, int
   *pairs = found[0];
   if (found[0] > 0)
     *message = std::to_string(found[0]) + " pair(s) of triangles intersect (the first: " +
-               std::to_string(found[1]) + " and " + std::to_string(found[2]) + ", at step " +
-               std::to_string(n) + ", t = " + std::to_string(t) + " s)";
+               "triangle " + std::to_string(found[1]) + " and " +
+               (found[2] >= 0 ? "triangle " + std::to_string(found[2])
+                              : "collider " + std::to_string(-1 - found[2])) +
+               ", at step " + std::to_string(n) + ", t = " + std::to_string(t) + " s)";
   PetscFunctionReturn(0);
 }
 
@@ -211,8 +225,9 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
   double peak_largest = 0.0, peak_sum = 0.0;
   PetscCallMPI(MPI_Reduce(&mine, &peak_largest, 1, MPI_DOUBLE, MPI_MAX, 0, comm_));
   PetscCallMPI(MPI_Reduce(&mine, &peak_sum, 1, MPI_DOUBLE, MPI_SUM, 0, comm_));
-  Json progressive;
+  Json progressive, contact;
   if (scene_.time.progressive()) PetscCall(progressive_summary(&progressive));
+  PetscCall(contact_summary(&contact));
   if (rank_ == 0) {
     Json::Object energy;
     double total = 0.0;
@@ -342,6 +357,7 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                                      {"peak_rss_mib_all_ranks", Json(peak_sum)},
                                      {"huge_pages", Json(huge_pages_requested())}})}};
     if (scene_.time.progressive()) top.emplace_back("progressive", progressive);
+    if (contact_) top.emplace_back("contact", contact);
     if (spectrum_)
       top.emplace_back(
           "hessian",

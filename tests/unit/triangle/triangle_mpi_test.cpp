@@ -5,6 +5,7 @@
 // state, compared in natural order with the same problem built on PETSC_COMM_SELF on each rank.
 #include <cmath>
 
+#include "mlshell/contact/contact_term.hpp"
 #include "mlshell/triangle/triangle_effects.hpp"
 #include "triangle_fixtures.hpp"
 
@@ -82,6 +83,14 @@ TEST(MpiTriangleShell, EnergyGradientHessianAndFieldsAgreeWithOneRank) {
         "material: {model: st-venant-kirchhoff, youngs_modulus: 1.0e6, poisson_ratio: 0.3, "
         "thickness: 0.01, volume_density: 500}\n"
         "effects:\n  - pressure: {pressure: 100}\n"
+        "time: {dt: 1, steps: 1, integrator: quasistatic}\n",
+        // Contact: a plane collider within reach of every vertex, and self-contact pairs
+        // across the ranks' halo (contact_term.hpp).
+        "geometry: {mesh: {generator: rectangle, size: [0.5, 0.5], edge_length: 0.05}}\n"
+        "material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, "
+        "thickness: 0.01, volume_density: 500}\n"
+        "effects:\n  - gravity\n  - contact: {thickness: 0.005, gap: 0.06}\n"
+        "  - collider: {plane: {point: [0, 0, -0.04], normal: [0, 0, 1], side: 1.0}}\n"
         "time: {dt: 1, steps: 1, integrator: quasistatic}\n"}) {
     const Scene scene = triangle_scene("mpi", yaml);
     TriangleProblem distributed(scene, PETSC_COMM_WORLD), serial(scene, PETSC_COMM_SELF);
@@ -93,6 +102,17 @@ TEST(MpiTriangleShell, EnergyGradientHessianAndFieldsAgreeWithOneRank) {
         for (const auto& t : tp->problem->terms()) t->set_hessian_projection(project);
       const Evaluation a = evaluate(distributed), b = evaluate(serial);
       EXPECT_NEAR(a.f, b.f, 1e-12 * std::abs(b.f));
+      if (const auto* contact = distributed.problem->find_term<ContactTerm>()) {
+        // The same pairs, as global primitives, found with a halo of the other rank's surface.
+        ContactStatistics sa, sb;
+        contact->statistics(&sa);
+        serial.problem->find_term<ContactTerm>()->statistics(&sb);
+        EXPECT_EQ(sa.candidates, sb.candidates);
+        EXPECT_EQ(sa.active, sb.active);
+        EXPECT_GT(sa.active, 1000);
+        EXPECT_GT(sa.halo_points, 0);
+        EXPECT_EQ(sb.halo_points, 0);
+      }
       if (distributed.layout().rank() == 0) {
         EXPECT_LT(relative_difference(a.gradient, b.gradient), 1e-11);
         EXPECT_LT(relative_difference(a.hessian_action, b.hessian_action), 1e-11) << project;

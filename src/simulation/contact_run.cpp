@@ -1,0 +1,90 @@
+// What a run does for a scene with contact (the `contact` effect, contact_term.hpp): the solvers
+// it accepts, the check of the start, the colliders' surface as output and the summary's
+// contact section. The audit of every frame against the colliders is in audit_frame.
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "mlshell/contact/contact_term.hpp"
+#include "mlshell/simulation.hpp"
+#include "simulation_output.hpp"
+
+namespace mlshell {
+
+namespace {
+
+std::string contact_key(const Scene& scene, const ContactTerm& contact) {
+  return scene.file.string() + ": effects[" + std::to_string(contact.effect_index()) + "].contact";
+}
+
+}  // namespace
+
+void Simulation::check_contact_solver() const {
+  // Projected Newton's line search and the trust region's trial points are cut to CCD's
+  // max_step; PETSc's own solvers and RMTR's coarse corrections are not (yet).
+  const std::string& type = options_.solver->type;
+  if (type == "pnewton" || type == "tr") return;
+  throw SceneError(contact_key(scene_, *contact_) + ": the solver '" + type +
+                   "' does not keep its steps within continuous collision detection's limit, so "
+                   "it could step through a contact; use -tao_type pnewton (e.g. solver: "
+                   "{options_file: petsc-options/projected-newton.yaml}) or -tao_type tr");
+}
+
+PetscErrorCode Simulation::start_contact() {
+  PetscFunctionBeginUser;
+  ContactTerm* contact = contact_;
+  PetscCall(contact->prepare(u_, nullptr));
+  double d;
+  PetscCall(contact->min_squared_distance(&d));
+  const double xi = contact->settings().barrier.thickness;
+  if (!(d > xi * xi)) {
+    std::ostringstream message;
+    message << contact_key(scene_, *contact_) << ": the shell starts " << std::setprecision(6)
+            << std::sqrt(std::max(d, 0.0)) << " m from itself or a collider, within the contact "
+            << "thickness " << xi << " m: move it (or the collider) apart, or give a smaller "
+            << "`thickness`";
+    throw SceneError(message.str());
+  }
+  if (rank_ == 0 && !contact_->obstacles().empty()) {
+    std::ostringstream obj;
+    obj << "# mlshell colliders of " << scene_.name << ", one object per collider\n"
+        << std::setprecision(17);
+    int offset = 1;
+    for (std::size_t k = 0; k < contact_->obstacles().size(); ++k) {
+      const TriangleMesh& m = contact_->obstacles()[k];
+      obj << "o collider_" << k << '\n';
+      for (const Point3& p : m.points) obj << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+      for (const Triangle& t : m.triangles)
+        obj << "f " << t[0] + offset << ' ' << t[1] + offset << ' ' << t[2] + offset << '\n';
+      offset += m.num_points();
+    }
+    write_file_atomic(output_->dir / "colliders.obj", obj.str());
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Simulation::contact_summary(Json* out) const {
+  PetscFunctionBeginUser;
+  *out = Json(nullptr);
+  if (!contact_) PetscFunctionReturn(0);
+  ContactTerm* contact = contact_;
+  PetscCall(contact->prepare(u_, nullptr));
+  ContactStatistics s;
+  PetscCall(contact->statistics(&s));
+  const ContactSettings& c = contact->settings();
+  *out = Json(Json::Object{
+      {"thickness", Json(c.barrier.thickness)},
+      {"gap", Json(c.barrier.gap)},
+      {"self", Json(c.self_contact)},
+      {"colliders", Json(static_cast<long long>(contact->obstacles().size()))},
+      {"stiffness", Json(s.stiffness)},
+      {"stiffness_fixed", Json(c.stiffness > 0.0)},
+      {"candidate_pairs", Json(static_cast<long long>(s.candidates))},
+      {"active_pairs", Json(static_cast<long long>(s.active))},
+      {"min_distance", std::isfinite(s.min_distance) ? Json(s.min_distance) : Json(nullptr)},
+      {"halo_points", Json(static_cast<long long>(s.halo_points))},
+      {"pattern_rebuilds", Json(static_cast<long long>(s.pattern_rebuilds))}});
+  PetscFunctionReturn(0);
+}
+
+}  // namespace mlshell
