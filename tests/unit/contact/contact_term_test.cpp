@@ -3,6 +3,7 @@
 // pattern growing under the same matrix handle.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "mlshell/contact/contact_term.hpp"
@@ -50,6 +51,7 @@ void fill(Vec v, double scale, double phase) {
 }  // namespace
 
 TEST(ContactTerm, GradientAndHessianMatchFiniteDifferences) {
+  long active[2] = {0, 0};  // without and with self-contact
   for (const bool self : {false, true}) {
     const Scene scene = triangle_scene("contact_fd", contact_scene(self));
     TriangleProblem tp(scene, PETSC_COMM_SELF);
@@ -66,6 +68,7 @@ TEST(ContactTerm, GradientAndHessianMatchFiniteDifferences) {
     ContactStatistics stats;
     problem->find_term<ContactTerm>()->statistics(&stats);
     EXPECT_GT(stats.active, 50);
+    active[self] = stats.active;
     const double h = 1e-6;
     VecAXPY(u, h, d);
     problem->objective(u, &fp, gp);
@@ -92,4 +95,55 @@ TEST(ContactTerm, GradientAndHessianMatchFiniteDifferences) {
     MatDestroy(&H);
     for (Vec* v : {&u, &d, &g, &gp, &gm, &Hd}) VecDestroy(v);
   }
+  EXPECT_GT(active[1], active[0] + 50) << "self-contact adds the sheet's own pairs";
+}
+
+namespace {
+
+/// Every component c of v set to value[c].
+void fill_uniform(Vec v, const std::array<double, 3>& value) {
+  PetscInt lo, hi;
+  VecGetOwnershipRange(v, &lo, &hi);
+  for (PetscInt i = lo; i < hi; ++i) VecSetValue(v, i, value[i % 3], INSERT_VALUES);
+  VecAssemblyBegin(v);
+  VecAssemblyEnd(v);
+}
+
+}  // namespace
+
+// CCD as the step limit: the sheet moved 10 cm straight down onto a plane 5 cm below stops
+// before its mid-surface comes within the thickness (1 cm) of the plane, and a step away from the
+// plane is not limited. Inside the thickness the energy is +∞ (never NaN).
+TEST(ContactTerm, MaxStepStopsBeforeTheThicknessAndTheBarrierEndsThere) {
+  const Scene scene = triangle_scene("contact_ccd", contact_scene(false));
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  LevelProblem& problem = *tp.problem;
+  Vec u, du;
+  tp.layout().create_vector(&u);
+  VecDuplicate(u, &du);
+  VecZeroEntries(u);
+  fill_uniform(du, {0.0, 0.0, -0.1});
+  double alpha;
+  problem.max_step(u, du, &alpha);
+  // The gap closes from 4 cm to 0 at α = 0.4; CCD stops short of it, leaving a gap.
+  EXPECT_GT(alpha, 0.05);
+  EXPECT_LT(alpha, 0.4);
+  VecAXPY(u, alpha, du);
+  double f;
+  problem.objective(u, &f, nullptr);
+  EXPECT_TRUE(std::isfinite(f));
+  double d;
+  problem.find_term<ContactTerm>()->min_squared_distance(&d);
+  EXPECT_GT(std::sqrt(d), 0.01);
+  // Away from the plane: no limit.
+  VecZeroEntries(u);
+  fill_uniform(du, {0.0, 0.0, 0.1});
+  problem.max_step(u, du, &alpha);
+  EXPECT_EQ(alpha, 1.0);
+  // 4.5 cm down: 5 mm from the plane, inside the 1 cm thickness.
+  fill_uniform(u, {0.0, 0.0, -0.045});
+  problem.objective(u, &f, nullptr);
+  EXPECT_EQ(f, PETSC_INFINITY);
+  VecDestroy(&u);
+  VecDestroy(&du);
 }
