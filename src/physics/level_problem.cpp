@@ -6,6 +6,7 @@
 
 #include "mlshell/effects.hpp"
 #include "mlshell/element_matrix_assembly.hpp"
+#include "mlshell/log_events.hpp"
 
 namespace mlshell {
 
@@ -32,8 +33,11 @@ PetscErrorCode LevelProblem::begin_step(double time, Vec predictor) {
 PetscErrorCode LevelProblem::prepare_terms(Vec u, Vec du, bool step_limiters_only) {
   PetscFunctionBeginUser;
   for (auto& t : terms_)
-    if (t->needs_prepare() && (!step_limiters_only || t->limits_steps()))
+    if (t->needs_prepare() && (!step_limiters_only || t->limits_steps())) {
+      PetscCall(PetscLogEventBegin(t->log_event(), 0, 0, 0, 0));
       PetscCall(t->prepare(u, du));
+      PetscCall(PetscLogEventEnd(t->log_event(), 0, 0, 0, 0));
+    }
   PetscFunctionReturn(0);
 }
 
@@ -54,7 +58,11 @@ PetscErrorCode LevelProblem::max_step(Vec u, Vec du, PetscReal* alpha) {
   PetscCall(layout_.to_local(du, d_local_));
   double mine = 1.0;
   for (const auto& t : terms_)
-    if (t->limits_steps()) mine = std::min(mine, t->max_step(u_local_, d_local_));
+    if (t->limits_steps()) {
+      PetscCall(PetscLogEventBegin(t->log_event(), 0, 0, 0, 0));
+      mine = std::min(mine, t->max_step(u_local_, d_local_));
+      PetscCall(PetscLogEventEnd(t->log_event(), 0, 0, 0, 0));
+    }
   PetscCallMPI(MPI_Allreduce(&mine, alpha, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
   PetscFunctionReturn(0);
 }
@@ -199,6 +207,7 @@ PetscErrorCode LevelProblem::hessian(Vec u, Mat H) {
   // made anew under the same handle, so the solvers holding it see the new pattern.
   for (auto& t : terms_) PetscCall(t->update_sparsity());
   if (const long version = sparsity_version(); version != 0 && pattern_version(H) != version) {
+    const LogEventScope event("Hessian:pattern");
     Mat fresh;
     PetscCall(create_matrix(&fresh));
     PetscInt references;

@@ -36,12 +36,10 @@ material:                    required
   model: clyde-orthotropic   woven cloth, eq. (3.3)-(3.4) of Kopanicakova et al. 2019
     preset: denim            Table 1 of the paper with its coupling limited so that the energy is
                              positive for every strain (the default of the examples)
-    preset: denim-table1     Table 1 exactly as printed; its energy has a negative well near
-                             E~ = (0.115, -0.11, 0) (psi = -0.0205 MPa) that free cloth falls into
-                             (both: k, mu, alpha below override the preset)
-    coupling_limit: none | {onset: a, bound: b}   0 < a < b < 1: k2 phi2(E11 E22) is kept while
-                             it is below a * 2 sqrt(AB) (A, B the warp and weft energies) and
-                             saturates towards b * 2 sqrt(AB); denim: {onset: 0.75, bound: 0.9}
+    preset: denim-table1     Table 1 as printed: a negative energy well near E~ = (0.115, -0.11,
+                             0) that free cloth falls into (k, mu, alpha below override presets)
+    coupling_limit: none | {onset: a, bound: b}   0 < a < b < 1: k2 phi2(E11 E22) kept below
+                             a 2 sqrt(AB), saturating to b 2 sqrt(AB) (denim: 0.75, 0.9)
     k: [k1, k2, k3, k4]      Pa, each > 0 (required without a preset)
     mu: [[...], x4]          mu_ji, four non-empty lists (required without a preset)
     alpha: [[...], x4]       alpha_ji, nonzero, same lengths as mu (required without a preset)
@@ -55,8 +53,7 @@ material:                    required
   thickness: number          m, > 0; required (denim preset: 0.66e-3)
   density: number            area density kg/m^2, >= 0; required (denim preset: 0.4)
   thickness_points: int      Gauss points through the thickness, 1..8 (default 3)
-effects:                     optional list; only the listed effects are simulated (none: statics
-                             of the elastic energy alone). Each item is a name or {name: params}.
+effects:                     optional list of names or {name: params}; only those are simulated
   - inertia                  implicit Euler inertia; at most once
   - gravity: [gx, gy, gz]    m/s^2; bare `- gravity` means [0, 0, -9.81]; at most once
   - surface_load: {force_per_area: [fx, fy, fz], ramp: bool}            N/m^2
@@ -65,9 +62,12 @@ effects:                     optional list; only the listed effects are simulate
   - dirichlet: {where: CURVE or POINT, components: [x, y, z], motion: MOTION, sigma: s,
                 penalty: beta, tolerance: t}   t (m, > 0): augmented Lagrangian to |u - d| <= t
   - clamp: {where: CURVE, motion: MOTION, sigma: s, penalty: beta, rotation_penalty: b}
-  - pressure: {pressure: p, ramp: bool}   Pa; work p (V(x) - V(X)) of the enclosed volume of a
-                             closed triangle mesh (outward normals: p > 0 inflates; an open
-                             or inward-oriented mesh is refused)
+  - pressure: {pressure: p, ramp: bool}   Pa; work p (V(x) - V(X)) of a closed triangle mesh's
+                             volume (outward normals: p > 0 inflates; open or inward: refused)
+  - contact: {thickness: t, gap: g, self: bool, stiffness: k}   triangle meshes: IPC barrier,
+                             at most once (docs/contact.md; defaults: the shell's, 1e-3 L, true)
+  - collider: {sphere: {center: c, radius: r, subdivisions: n}, plane: {point: p, normal: n,
+               side: s}, box: {center: c, size: [sx, sy, sz]}, obj: path}   one shape each
     ramp: false (default) or true: the load grows linearly from 0 to full over the steps.
     components: non-empty subset of x, y, z, no repeats (default all three).
     sigma: > 0 (default 5): penalty beta = (Y tau / Y tau_denim) (1 m / L) (h / L)^-sigma for the

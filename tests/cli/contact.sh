@@ -3,7 +3,8 @@
 # strip_over_sphere.yaml) on 1 and 2 ranks ends in the same state with no intersecting frame,
 # its summary reports the contact and the audit, and colliders.obj holds the sphere; in one load
 # step instead of four (a 0.3 m pull through the sphere's place, which only CCD's step limit
-# keeps out) it ends in the same state; and bad contact input exits 2 naming the file and key.
+# keeps out) and with the trust region instead of projected Newton it ends in the same state; and
+# bad contact input exits 2 naming the file and key.
 #
 # usage: bash contact.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -21,10 +22,11 @@ run() {  # run NAME RANKS [OPTIONS...]: the scene into out/NAME, exit 0 expected
   [[ $rc -eq 0 ]] || die "$name: exit $rc: $(tail -5 "$name.log")"
 }
 
-echo "check: the strip over the sphere on 1 and 2 ranks, and in one load step"
+echo "check: the strip over the sphere on 1 and 2 ranks, in one load step, and by tr"
 run serial 1
 run distributed 2
 run one_step 1 -mlshell_steps 1 -mlshell_dt 1
+run trust_region 1 -tao_type tr
 $PY - <<'PY' || die "contact outputs"
 import json
 from pathlib import Path
@@ -44,11 +46,14 @@ def final(name):
     return [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
 
 one, two, step = summary("serial"), summary("distributed"), summary("one_step")
+summary("trust_region")
 assert two["contact"]["halo_points"] > 0 and one["contact"]["halo_points"] == 0
 a, b, c = final("serial"), final("distributed"), final("one_step")
 # The same minimiser to the solver's tolerance (1e-7 N on forces of 1e-1 N: ~1e-9 m here).
 assert max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v)) < 1e-8, "1 vs 2 ranks"
 assert max(abs(p - q) for u, v in zip(a, c) for p, q in zip(u, v)) < 1e-5, "one load step"
+d = final("trust_region")
+assert max(abs(p - q) for u, v in zip(a, d) for p, q in zip(u, v)) < 1e-6, "tr against pnewton"
 obj = Path("out/serial/colliders.obj").read_text()
 assert "o collider_0" in obj and obj.count("\nf ") == 1280, "colliders.obj: the sphere"
 PY

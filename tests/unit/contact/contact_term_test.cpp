@@ -147,3 +147,27 @@ TEST(ContactTerm, MaxStepStopsBeforeTheThicknessAndTheBarrierEndsThere) {
   VecDestroy(&u);
   VecDestroy(&du);
 }
+
+// `self: false` leaves out every pair of the shell with itself: without a collider there is
+// none, and with `self: true` the same sheet has both point–triangle and edge–edge pairs.
+TEST(ContactTerm, SelfContactOffLeavesNoShellPairs) {
+  for (const bool self : {false, true}) {
+    std::string yaml = contact_scene(self);
+    yaml.erase(yaml.find("  - collider"), yaml.find("time:") - yaml.find("  - collider"));
+    const Scene scene = triangle_scene("contact_self", yaml);
+    TriangleProblem tp(scene, PETSC_COMM_SELF);
+    Vec u;
+    tp.layout().create_vector(&u);
+    fill(u, 5e-3, 0.3);
+    double f;
+    tp.problem->objective(u, &f, nullptr);
+    ContactStatistics stats;
+    tp.problem->find_term<ContactTerm>()->statistics(&stats);
+    if (self) {
+      EXPECT_GT(stats.active, 100);
+    } else {
+      EXPECT_EQ(stats.candidates, 0);
+    }
+    VecDestroy(&u);
+  }
+}
