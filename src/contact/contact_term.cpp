@@ -12,6 +12,7 @@
 #include "mlshell/contact/distance/edge_edge.hpp"
 #include "mlshell/contact/distance/edge_edge_mollifier.hpp"
 #include "mlshell/contact/distance/point_triangle.hpp"
+#include "mlshell/log_events.hpp"
 
 namespace mlshell {
 
@@ -75,6 +76,11 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
       owner = std::min(owner, layout_.face_owner(f));
     }
   }
+  for (std::size_t f = num_shell_faces_; f < surface_.faces.size(); ++f) {
+    Box b = empty_box();
+    for (int v : surface_.faces[f]) grow(b, rest_[v]);
+    obstacle_boxes_.push_back(b);
+  }
   const int rank = layout_.rank();
   for (int l = 0; l < layout_.num_owned_points(); ++l) own_vertices_.push_back(layout_.local_points()[l]);
   for (int e = 0; e < num_shell_edges_; ++e)
@@ -107,6 +113,7 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
 
 PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
   PetscFunctionBeginUser;
+  const LogEventScope event(du ? "Contact:swept" : "Contact:proximity");
   swept_ = du != nullptr;
   std::vector<double> ul, dl;
   PetscCall(layout_.to_local(u, ul));
@@ -124,18 +131,18 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
 
   // Halo: every rank's box of its own primitives, then the vertices of own primitives that
   // come within reach of another rank's box.
+  Box mine = empty_box();
+  for (int l : own_box_points_) {
+    grow(mine, position(l));
+    grow(mine, position(l) + motion(l));
+  }
+  // A margin of rounding on top of the reach: a pair at the reach has no energy anyway.
+  const double margin = reach * (1.0 + 1e-6) + 1e-12 * settings_.bbox_diagonal;
   std::vector<double> received;  // (id, x, dx) per vertex
   if (size > 1) {
-    Box mine = empty_box();
-    for (int l : own_box_points_) {
-      grow(mine, position(l));
-      grow(mine, position(l) + motion(l));
-    }
     std::vector<double> boxes(6 * size);
     PetscCallMPI(MPI_Allgather(mine.data(), 6, MPI_DOUBLE, boxes.data(), 6, MPI_DOUBLE,
                                layout_.comm()));
-    // A margin of rounding on top of the reach: a pair at the reach has no energy anyway.
-    const double margin = reach * (1.0 + 1e-6) + 1e-12 * settings_.bbox_diagonal;
     std::vector<std::vector<double>> send(size);
     std::vector<int> marked(num_shell_points_, -1);  // the last rank a vertex was sent to
     auto primitive_box = [&](const int* v, int n) {
@@ -184,9 +191,14 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
                                layout_.comm()));
   }
 
-  // The compact surface: known shell vertices in natural order, then the obstacles'.
+  // The compact surface: known shell vertices in natural order, then the vertices of the
+  // obstacles' faces within reach of this rank's own primitives.
   const int total = static_cast<int>(rest_.size());
   std::vector<int> compact(total, -1), halo_of(num_shell_points_, -1);
+  std::vector<char> near(total - num_shell_points_, 0);
+  for (std::size_t k = 0; k < obstacle_boxes_.size(); ++k)
+    if (overlap(obstacle_boxes_[k], mine, margin))
+      for (int v : surface_.faces[num_shell_faces_ + k]) near[v - num_shell_points_] = 1;
   for (std::size_t k = 0; k < received.size(); k += 7) halo_of[static_cast<int>(received[k])] = k;
   x_.clear(), dx_.clear(), vertex_id_.clear(), local_index_.clear(), block_index_.clear();
   halo_points_ = 0;
@@ -194,6 +206,7 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
     Eigen::Vector3d x, d = Eigen::Vector3d::Zero();
     int l = -1;
     if (v >= num_shell_points_) {
+      if (!near[v - num_shell_points_]) continue;
       x = rest_[v];
     } else if ((l = layout_.local_of(v)) >= 0) {
       x = position(l), d = motion(l);
@@ -358,6 +371,7 @@ PetscErrorCode ContactTerm::add_nonlocal_gradient(Vec g) const {
 
 double ContactTerm::max_step(const std::vector<double>&, const std::vector<double>&) const {
   if (!swept_) throw std::logic_error("contact: max_step() needs prepare(u, du)");
+  const LogEventScope event("Contact:ccd");
   double alpha = 1.0;
   for (const Pair& p : pairs_) {
     const Vector12 x0 = stencil(p, 0.0), dx = stencil(p, 1.0) - x0;

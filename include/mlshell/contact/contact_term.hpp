@@ -127,6 +127,7 @@ class ContactTerm final : public EnergyTerm {
   std::vector<int> edge_owner_;            ///< owner of each shell edge
   std::vector<int> own_vertices_, own_edges_, own_faces_;  ///< this rank's primitives
   std::vector<int> own_box_points_;        ///< local indices of their vertices
+  std::vector<Eigen::Matrix<double, 6, 1>> obstacle_boxes_;  ///< each obstacle face's (lo, hi)
   double kappa_ = 0.0, kappa_max_ = 0.0, prev_min_distance_ = INFINITY;
 
   // The prepared state, on the compact surface of the vertices this rank knows.
