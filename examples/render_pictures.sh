@@ -15,7 +15,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_TH
 # Steel and acrylic plates bend by millimetres or less: z is exaggerated (the caption says so).
 declare -A view=([plate]="--zscale 1000" [clamped_plate]="--zscale 1000"
                  [plate_buckling]="--zscale 5" [plate_shearing]="--zscale 5"
-                 [balloon]="--elev 20" [unstructured_drape]="--elev 12")
+                 [balloon]="--elev 20" [unstructured_drape]="--elev 12"
+                 [strip_over_sphere]="--elev 20 --azim=-100 --size 800 450")
 mkdir -p examples/pictures docs/pictures out/pictures
 for scene in examples/*.yaml examples/triangle/*.yaml; do
   name=$(basename "$scene" .yaml)

@@ -20,6 +20,9 @@ namespace {
 
 using Box = Eigen::Matrix<double, 6, 1>;  // lo (3), hi (3)
 
+/// The Verlet list's skin, as a fraction of the reach ξ + ĝ.
+constexpr double kVerletSkin = 1.0;
+
 /// κ doubles while the smallest gap is below this fraction of ĝ and shrinking.
 constexpr double kCloseGap = 1e-2;
 
@@ -136,8 +139,12 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
     grow(mine, position(l));
     grow(mine, position(l) + motion(l));
   }
-  // A margin of rounding on top of the reach: a pair at the reach has no energy anyway.
-  const double margin = reach * (1.0 + 1e-6) + 1e-12 * settings_.bbox_diagonal;
+  // The proximity pairs are kept as a Verlet list, found within reach + 2 skin and reused
+  // while every vertex stays within the skin of where it was then: a pair within reach now was
+  // within reach + 2 skin then. The halo and the obstacles' culling see as far.
+  const double skin = kVerletSkin * reach, list_reach = reach + (swept_ ? 0.0 : 2.0 * skin);
+  // A margin of rounding on top of that: a pair at the reach has no energy anyway.
+  const double margin = list_reach * (1.0 + 1e-6) + 1e-12 * settings_.bbox_diagonal;
   std::vector<double> received;  // (id, x, dx) per vertex
   if (size > 1) {
     std::vector<double> boxes(6 * size);
@@ -221,6 +228,14 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
     x_.push_back(x), dx_.push_back(d), vertex_id_.push_back(v), local_index_.push_back(l);
     block_index_.push_back(v < num_shell_points_ ? layout_.petsc_of(v) : -1);
   }
+  if (!swept_ && vertex_id_ == list_vertex_id_) {
+    double moved = 0.0;
+    for (std::size_t i = 0; i < x_.size(); ++i) moved = std::max(moved, (x_[i] - list_x_[i]).norm());
+    if (moved < skin) {
+      pairs_ = list_pairs_;
+      PetscFunctionReturn(0);
+    }
+  }
   ContactSurface known;
   known.num_vertices = static_cast<int>(x_.size());
   std::vector<int> edge_id, face_id;
@@ -243,7 +258,7 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
     for (std::size_t i = 0; i < x_.size(); ++i) x1[i] = x_[i] + dx_[i];
     candidates = find_swept_candidates(known, x_, x1, settings_.barrier.thickness);
   } else {
-    candidates = find_proximity_candidates(known, x_, reach);
+    candidates = find_proximity_candidates(known, x_, list_reach);
   }
 
   // This rank's pairs (contact_term.hpp's ownership).
@@ -271,6 +286,7 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
     const auto &ea = known.edges[ca], &eb = known.edges[cb];
     pairs_.push_back({true, {ea[0], ea[1], eb[0], eb[1]}});
   }
+  if (!swept_) list_vertex_id_ = vertex_id_, list_x_ = x_, list_pairs_ = pairs_, ++list_builds_;
   PetscFunctionReturn(0);
 }
 
@@ -457,7 +473,9 @@ PetscErrorCode ContactTerm::statistics(ContactStatistics* s) const {
   PetscCallMPI(MPI_Allreduce(mine, sums, 3, MPI_LONG, MPI_SUM, layout_.comm()));
   double global;
   PetscCallMPI(MPI_Allreduce(&dmin, &global, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
-  *s = ContactStatistics{sums[0], sums[1], std::sqrt(global), kappa_, sums[2], rebuilds_};
+  long builds;
+  PetscCallMPI(MPI_Allreduce(&list_builds_, &builds, 1, MPI_LONG, MPI_MAX, layout_.comm()));
+  *s = ContactStatistics{sums[0], sums[1], std::sqrt(global), kappa_, sums[2], rebuilds_, builds};
   PetscFunctionReturn(0);
 }
 

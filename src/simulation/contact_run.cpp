@@ -83,7 +83,8 @@ PetscErrorCode Simulation::contact_summary(Json* out) const {
       {"active_pairs", Json(static_cast<long long>(s.active))},
       {"min_distance", std::isfinite(s.min_distance) ? Json(s.min_distance) : Json(nullptr)},
       {"halo_points", Json(static_cast<long long>(s.halo_points))},
-      {"pattern_rebuilds", Json(static_cast<long long>(s.pattern_rebuilds))}});
+      {"pattern_rebuilds", Json(static_cast<long long>(s.pattern_rebuilds))},
+      {"broad_phase_builds", Json(static_cast<long long>(s.list_builds))}});
   PetscFunctionReturn(0);
 }
 

@@ -26,6 +26,10 @@
 // pattern grows, sparsity_version() changes and LevelProblem rebuilds the matrix under the
 // same handle. It restarts from the current pairs when it holds over twice as many.
 //
+// The proximity candidates are a Verlet list: found within ξ + ĝ + 2s (the skin s = ξ + ĝ) and
+// reused while every known vertex stays within s of where it was then, so that the evaluations
+// of a line search and of a converging Newton solve share one broad phase.
+//
 // CCD is max_step: the swept candidates of u → u + du, each by additive CCD (additive_ccd.hpp),
 // the smallest time of impact over all ranks.
 //
@@ -66,12 +70,13 @@ struct ContactSettings {
 
 /// What a contact term saw at the last prepared state (summed or reduced over the ranks).
 struct ContactStatistics {
-  long candidates = 0;                  ///< broad-phase pairs (owned)
+  long candidates = 0;                  ///< broad-phase pairs (owned; the Verlet list's)
   long active = 0;                      ///< pairs closer than ξ + ĝ
   double min_distance = INFINITY;       ///< the smallest pair distance (m), ∞ without pairs
   double stiffness = 0.0;               ///< κ
   long halo_points = 0;                 ///< vertices received from other ranks
   long pattern_rebuilds = 0;            ///< Hessian patterns grown or restarted so far
+  long list_builds = 0;                 ///< proximity broad phases run so far (Verlet lists)
 };
 
 class ContactTerm final : public EnergyTerm {
@@ -136,6 +141,11 @@ class ContactTerm final : public EnergyTerm {
   std::vector<int> vertex_id_, local_index_;  ///< compact → surface id, → local point (−1)
   std::vector<PetscInt> block_index_;         ///< compact → PETSc block (−1: obstacle)
   std::vector<Pair> pairs_;                   ///< this rank's candidate pairs
+  /// The last proximity pairs as a Verlet list: the vertices and positions they were found at.
+  std::vector<int> list_vertex_id_;
+  std::vector<Eigen::Vector3d> list_x_;
+  std::vector<Pair> list_pairs_;
+  long list_builds_ = 0;
   long halo_points_ = 0;
   mutable std::vector<PetscInt> remote_rows_;
   mutable std::vector<double> remote_values_;
