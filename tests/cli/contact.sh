@@ -3,8 +3,9 @@
 # strip_over_sphere.yaml) on 1 and 2 ranks ends in the same state with no intersecting frame,
 # its summary reports the contact and the audit, and colliders.obj holds the sphere; in one load
 # step instead of four (a 0.3 m pull through the sphere's place, which only CCD's step limit
-# keeps out) and with the trust region instead of projected Newton it ends in the same state; and
-# bad contact input exits 2 naming the file and key.
+# keeps out) and with the trust region instead of projected Newton it ends in the same state; a
+# strip folded onto itself stays apart by self-contact on 2 ranks, and without self-contact the
+# audit stops it (exit 5); and bad contact input exits 2 naming the file and key.
 #
 # usage: bash contact.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -57,6 +58,43 @@ assert max(abs(p - q) for u, v in zip(a, d) for p, q in zip(u, v)) < 1e-6, "tr a
 obj = Path("out/serial/colliders.obj").read_text()
 assert "o collider_0" in obj and obj.count("\nf ") == 1280, "colliders.obj: the sphere"
 PY
+
+echo "check: self-contact keeps a strip folded on itself apart on 2 ranks; without it the audit stops"
+# Its right end turned over the left one (a half turn about the y axis): the two halves hang
+# against each other.
+fold() {
+  cat <<YAML
+geometry: {mesh: {generator: rectangle, size: [1.0, 0.1], faces: [40, 4]}}
+material: {model: neo-hookean, youngs_modulus: 1.0e6, poisson_ratio: 0.3, thickness: 0.001, volume_density: 1000}
+effects:
+  - gravity: [0, 0, -9.81]
+  - dirichlet: {where: boundary(left)}
+  - dirichlet: {where: boundary(right), motion: {rotate: {axis: [0, 1, 0], center: [0.5, 0, 0.03], angle: -3.141592653589793}, over: [0, 1]}}
+  - contact: {self: $1}
+time: {dt: 0.25, steps: 4, integrator: quasistatic}
+solver: {options_file: $SRC/petsc-options/projected-newton.yaml}
+YAML
+}
+fold true >fold.yaml
+rc=0
+timeout 300 mpiexec --oversubscribe -n 2 "$MLSHELL" fold.yaml -mlshell_quiet \
+  -mlshell_output_dir out/fold >fold.log 2>&1 || rc=$?
+[[ $rc -eq 0 ]] || die "fold: exit $rc: $(tail -5 fold.log)"
+$PY - <<'PY' || die "fold: outputs"
+import json
+s = json.load(open("out/fold/summary.json"))
+assert s["status"] == "complete", s["status"]
+c, audit = s["contact"], s["intersection_audit"]
+assert c["colliders"] == 0 and c["active_pairs"] > 0 and c["min_distance"] > c["thickness"], c
+assert audit["frames"] == 5 and audit["intersecting_pairs"] == 0, audit
+PY
+fold false >fold_apart.yaml
+rc=0
+"$MLSHELL" fold_apart.yaml -mlshell_output_dir out/fold_apart >fold_apart.log 2>&1 || rc=$?
+[[ $rc -eq 5 ]] || die "fold without self-contact: exit $rc, expected 5: $(tail -3 fold_apart.log)"
+grep -q "^mlshell: frame [0-9]* (t = .*) intersects itself: [0-9]* pair(s) of triangles" \
+  fold_apart.log || die "fold without self-contact: $(tail -3 fold_apart.log)"
+grep -q '"status": "intersection"' out/fold_apart/summary.json || die "fold: status"
 
 echo "check: bad contact input exits 2 naming the file and key"
 bad() {  # bad NAME PATTERN OPTIONS... < scene: exit 2 and PATTERN in the message
