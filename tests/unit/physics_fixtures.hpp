@@ -124,6 +124,21 @@ struct SolvedScene {
 };
 
 /// max |a − b| / max |b|: how far a result (on 2 ranks) is from its reference (on 1).
+/// The Hessian check of a problem's derivative tests: H = ∇²f(u) into *H (the caller destroys
+/// it), *ref = ‖H d‖ and *err = ‖H d − (g⁺ − g⁻)/2h‖ for the gradients g± at u ± h d (`gp` is
+/// overwritten; `Hd` receives H d).
+inline void hessian_difference(LevelProblem& problem, Vec u, Vec d, Vec gp, Vec gm, Vec Hd, double h,
+                               Mat* H, double* err, double* ref) {
+  problem.create_matrix(H);
+  problem.hessian(u, *H);
+  MatMult(*H, d, Hd);
+  VecAXPY(gp, -1.0, gm);
+  VecScale(gp, 1.0 / (2 * h));
+  VecNorm(Hd, NORM_2, ref);
+  VecAXPY(gp, -1.0, Hd);
+  VecNorm(gp, NORM_2, err);
+}
+
 inline double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
   double diff = 0.0, norm = 0.0;
   for (size_t i = 0; i < a.size(); ++i) {
