@@ -45,6 +45,29 @@ PetscErrorCode hessian_jacobian(SNES, Vec u, Mat H, Mat, void* ctx) {
   return static_cast<Objective*>(ctx)->hessian(u, H);
 }
 
+/// Each SNES iterate after the first is accepted (the objective's terms adapt: contact's κ).
+PetscErrorCode accept_iterate(SNES snes, PetscInt it, PetscReal, void* ctx) {
+  PetscFunctionBeginUser;
+  if (it == 0) PetscFunctionReturn(0);
+  Vec u;
+  PetscCall(SNESGetSolution(snes, &u));
+  PetscCall(static_cast<Objective*>(ctx)->accepted(u));
+  PetscFunctionReturn(0);
+}
+
+/// newtonls's line search tries u − λ y, λ ≤ 1: the direction is cut to the objective's
+/// admissible step first (contact: CCD), so that no trial point lies beyond it.
+PetscErrorCode admissible_direction(SNESLineSearch, Vec u, Vec y, PetscBool* changed, void* ctx) {
+  PetscFunctionBeginUser;
+  PetscReal alpha;
+  PetscCall(VecScale(y, -1.0));
+  PetscCall(static_cast<Objective*>(ctx)->max_step(u, y, &alpha));
+  PetscCall(VecScale(y, -1.0));
+  *changed = alpha < 1.0 ? PETSC_TRUE : PETSC_FALSE;
+  if (*changed) PetscCall(VecScale(y, alpha));
+  PetscFunctionReturn(0);
+}
+
 /// Whether the user set `option`, without counting as reading it: a default's check is no
 /// read, so that an option the chosen solver then ignores is still reported as never used
 /// (unused_options.hpp). PETSc marks an option read when it finds it; one that nothing had read
@@ -306,6 +329,11 @@ StepSolver::StepSolver(Objective& problem, MultilevelObjective* levels,
     options_read(SNESSetFromOptions(snes_), "SNESSetFromOptions");
     PetscCallAbort(comm, SNESSetConvergenceTest(snes_, floor_then_default_snes_test, &floor_,
                                                 nullptr));
+    SNESLineSearch line_search;
+    PetscCallAbort(comm, SNESGetLineSearch(snes_, &line_search));
+    PetscCallAbort(comm,
+                   SNESLineSearchSetPreCheck(line_search, admissible_direction, &problem_));
+    PetscCallAbort(comm, SNESMonitorSet(snes_, accept_iterate, &problem_, nullptr));
     return;
   }
   PetscCallAbort(comm, tao_defaults());

@@ -20,14 +20,25 @@ std::string contact_key(const Scene& scene, const ContactTerm& contact) {
 }  // namespace
 
 void Simulation::check_contact_solver() const {
-  // Projected Newton's line search and the trust region's trial points are cut to CCD's
-  // max_step; PETSc's own solvers and RMTR's coarse corrections are not (yet).
+  // Projected Newton's line search, the trust region's trial points and SNES newtonls's line
+  // search (a pre-check) are cut to CCD's max_step; TAO's own solvers and RMTR's coarse
+  // corrections are not (yet).
   const std::string& type = options_.solver->type;
   if (type == "pnewton" || type == "tr") return;
+  if (type == "snes") {  // newtonls's line search starts within CCD's step (step_solver.cpp)
+    char snes_type[64] = "newtonls";
+    PetscCallAbort(comm_, PetscOptionsGetString(nullptr, nullptr, "-snes_type", snes_type,
+                                                sizeof snes_type, nullptr));
+    if (std::string(snes_type) == "newtonls") return;
+    throw SceneError(contact_key(scene_, *contact_) + ": -snes_type " + snes_type +
+                     " does not keep its steps within continuous collision detection's limit; "
+                     "contact scenes run SNES as newtonls (its line search is cut to it)");
+  }
   throw SceneError(contact_key(scene_, *contact_) + ": the solver '" + type +
                    "' does not keep its steps within continuous collision detection's limit, so "
                    "it could step through a contact; use -tao_type pnewton (e.g. solver: "
-                   "{options_file: petsc-options/projected-newton.yaml}) or -tao_type tr");
+                   "{options_file: petsc-options/projected-newton.yaml}), -tao_type tr or "
+                   "-mlshell_step_solver snes");
 }
 
 PetscErrorCode Simulation::start_contact() {

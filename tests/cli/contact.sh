@@ -59,6 +59,18 @@ obj = Path("out/serial/colliders.obj").read_text()
 assert "o collider_0" in obj and obj.count("\nf ") == 1280, "colliders.obj: the sphere"
 PY
 
+echo "check: SNES newtonls's line search is cut to CCD: whatever it reaches, no frame intersects"
+rc=0
+timeout 300 "$MLSHELL" strip.yaml -mlshell_quiet -mlshell_output_dir out/snes \
+  -mlshell_step_solver snes >snes.log 2>&1 || rc=$?
+[[ $rc -eq 0 || $rc -eq 3 ]] || die "snes: exit $rc: $(tail -5 snes.log)"
+$PY - <<'PY' || die "snes: outputs"
+import json
+s = json.load(open("out/snes/summary.json"))
+assert s["status"] in ("complete", "solver_failed"), s["status"]
+assert s["intersection_audit"]["intersecting_pairs"] == 0, s["intersection_audit"]
+PY
+
 echo "check: self-contact keeps a strip folded on itself apart on 2 ranks; without it the audit stops"
 # Its right end turned over the left one (a half turn about the y axis): the two halves hang
 # against each other.
@@ -126,6 +138,10 @@ strip_with "  - contact
 strip_with "  - contact
   - collider: {sphere: {center: [0.5, 0.1, -0.2], radius: 0.1}}" |
   bad solver "solver.yaml: effects\[3\].contact: the solver 'bnls' does not keep" -tao_type bnls
+strip_with "  - contact
+  - collider: {sphere: {center: [0.5, 0.1, -0.2], radius: 0.1}}" |
+  bad snes_type "snes_type.yaml: effects\[3\].contact: -snes_type ngmres does not keep" \
+  -mlshell_step_solver snes -snes_type ngmres
 cat <<'YAML' | bad cloth "cloth.yaml:[0-9]*: effects\[0\].contact.*triangle-mesh shells"
 geometry: {cage: {generator: rectangle, size: [1, 1], faces: [4, 4]}, refine: 1}
 material: {model: clyde-orthotropic, preset: denim, thickness: 0.66e-3, density: 0.4}
