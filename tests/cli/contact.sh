@@ -40,6 +40,8 @@ def summary(name):
     assert c["active_pairs"] > 0, c  # the strip lies on the sphere
     assert c["thickness"] < c["min_distance"] < c["thickness"] + c["gap"], c
     assert audit["frames"] == s["steps"] + 1 and audit["intersecting_pairs"] == 0, audit
+    # The strip's middle rests on the sphere's top (z = -5 mm), not below it: no step tunnelled.
+    assert s["probes"]["middle"]["displacement"][2] > -0.01, s["probes"]
     return s
 
 def final(name):
@@ -69,6 +71,7 @@ import json
 s = json.load(open("out/snes/summary.json"))
 assert s["status"] in ("complete", "solver_failed"), s["status"]
 assert s["intersection_audit"]["intersecting_pairs"] == 0, s["intersection_audit"]
+assert s["probes"]["middle"]["displacement"][2] > -0.01, s["probes"]  # not through the sphere
 PY
 
 echo "check: self-contact keeps a strip folded on itself apart on 2 ranks; without it the audit stops"
