@@ -260,7 +260,9 @@ PetscErrorCode LocalTrustRegion::accept_trial() {
 PetscErrorCode LocalTrustRegion::accepted() {
   PetscFunctionBeginUser;
   ++counters_.accepted;
+  const long revision = f_.revision();
   PetscCall(f_.accepted(x_));
+  if (f_.revision() != revision) PetscCall(f_.objective(x_, &fx_, g_));  // κ, colliders
   PetscCall(assemble_derivatives(false));
   // The trial value was finite, so the same point evaluated with its gradient must be too.
   PetscCheck(finite_, PetscObjectComm((PetscObject)x_), PETSC_ERR_FP,

@@ -21,6 +21,7 @@ class TaoObjective final : public Objective {
     return source_ ? source_->max_step(x, d, alpha) : Objective::max_step(x, d, alpha);
   }
   PetscErrorCode accepted(Vec x) override { return source_ ? source_->accepted(x) : 0; }
+  long revision() const override { return source_ ? source_->revision() : 0; }
   PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
     return g ? TaoComputeObjectiveAndGradient(tao_, x, f, g) : TaoComputeObjective(tao_, x, f);
   }

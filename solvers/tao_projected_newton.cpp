@@ -157,7 +157,9 @@ PetscErrorCode solve(Tao tao) {
     PetscCall(VecCopy(c->trial, x));
     PetscCall(VecCopy(c->trial_gradient, g));
     f = ft;
+    const long revision = f_obj.revision();
     PetscCall(f_obj.accepted(x));
+    if (f_obj.revision() != revision) PetscCall(f_obj.objective(x, &f, g));  // κ, colliders
     PetscCall(VecNorm(g, NORM_2, &gnorm));
     ++tao->niter;
     PetscInt its;

@@ -53,6 +53,7 @@ class CoarseLevelModel final : public Objective {
     return level_.max_step(x, d, alpha);
   }
   PetscErrorCode accepted(Vec x) override { return galerkin_ ? 0 : level_.accepted(x); }
+  long revision() const override { return galerkin_ ? 0 : level_.revision(); }
 
  private:
   PetscErrorCode set_start(Vec x0);  // allocates on first use, copies x0

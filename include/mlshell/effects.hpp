@@ -121,6 +121,9 @@ class PenaltyTerm final : public EnergyTerm {
                      std::vector<double>* grad, Mat hess) const override;
   /// max over this rank's samples of |P(u(ξ) − d(ξ, t))| (m): how far the penalty lets go.
   double max_violation(const std::vector<double>& u) const;
+  double constraint_violation(const std::vector<double>& u) const override {
+    return max_violation(u);
+  }
   /// Augmented-Lagrangian mode (method of multipliers): the energy becomes
   /// Σ (s w/2 |P c|² − λ·P c) with c = u(ξ) − d(ξ, t), w = β × weight, multipliers λ per sample and
   /// a penalty factor s (1 at first), updated after each solve until max |P c| ≤ tolerance (m):

@@ -83,6 +83,8 @@ class EnergyTerm {
   /// The solver accepted the iterate u (local array): adaptive barrier stiffness, friction
   /// lagging.
   virtual void after_accept(const std::vector<double>& u) {}
+  /// Changes whenever after_accept (or a constraint update) changes the term's energy function.
+  virtual long revision() const { return 0; }
   /// Point pairs (natural indices) that the term's Hessian couples beyond the element stencils
   /// (contact pairs); the level's Hessian is preallocated for them.
   virtual void extend_sparsity(std::vector<std::array<int, 2>>& pairs) const {}
@@ -105,6 +107,9 @@ class EnergyTerm {
   /// tolerance, and the first-order multiplier update λ ← λ − β c(u) given the violation over
   /// all ranks.
   virtual bool has_multipliers() const { return false; }
+  /// The violation of the constraint at u (local), in the units of constraint_tolerance; 0 for
+  /// terms without one.
+  virtual double constraint_violation(const std::vector<double>& u) const { return 0.0; }
   virtual double constraint_tolerance() const { return 0.0; }
   virtual void update_multipliers(const std::vector<double>& u, double violation) {}
   /// Per-element output fields (e.g. a triangle's membrane strain): their names, and their

@@ -46,6 +46,8 @@ class LevelProblem final : public Objective {
   PetscErrorCode max_step(Vec u, Vec du, PetscReal* alpha) override;
   /// Every term's after_accept.
   PetscErrorCode accepted(Vec u) override;
+  /// The sum of the terms' revisions.
+  long revision() const override;
   /// f(u) and, if g is not null, ∇f(u). A non-finite energy (a trial point outside the
   /// material's domain) is reported as +inf so that trust-region and line-search methods reject
   /// the step instead of propagating NaN.

@@ -25,6 +25,9 @@ class Objective {
   }
   /// The solver accepted x as its new iterate (terms may adapt: barrier stiffness, friction).
   virtual PetscErrorCode accepted(Vec x) { return 0; }
+  /// Changes whenever the objective itself changes (accepted() doubled contact's κ, moved a
+  /// collider): a solver that holds f and ∇f of its iterate evaluates them again.
+  virtual long revision() const { return 0; }
   /// A matrix with the pattern of hessian(), for solvers that allocate their own (StepSolver).
   virtual PetscErrorCode create_hessian(Mat* H) const {
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "this objective does not create its Hessian");

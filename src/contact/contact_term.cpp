@@ -79,11 +79,7 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
       owner = std::min(owner, layout_.face_owner(f));
     }
   }
-  for (std::size_t f = num_shell_faces_; f < surface_.faces.size(); ++f) {
-    Box b = empty_box();
-    for (int v : surface_.faces[f]) grow(b, rest_[v]);
-    obstacle_boxes_.push_back(b);
-  }
+  update_obstacle_boxes();
   const int rank = layout_.rank();
   for (int l = 0; l < layout_.num_owned_points(); ++l) own_vertices_.push_back(layout_.local_points()[l]);
   for (int e = 0; e < num_shell_edges_; ++e)
@@ -112,6 +108,110 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
                       settings_.vertex_force / holding);
     kappa_max_ = 100.0 * kappa_;
   }
+}
+
+void ContactTerm::update_obstacle_boxes() {
+  obstacle_boxes_.clear();
+  for (std::size_t f = num_shell_faces_; f < surface_.faces.size(); ++f) {
+    Box b = empty_box();
+    for (int v : surface_.faces[f]) grow(b, rest_[v]);
+    obstacle_boxes_.push_back(b);
+  }
+}
+
+void ContactTerm::set_obstacle_motions(std::vector<PrescribedMotion> motions) {
+  if (motions.size() != obstacles_.size())
+    throw std::invalid_argument("contact: one motion (or none) per obstacle");
+  motions_ = std::move(motions);
+  moving_ = std::any_of(motions_.begin(), motions_.end(), [](const auto& m) { return bool(m); });
+  obstacle_reference_ = obstacles_;
+  place_obstacles(0.0);
+}
+
+/// The obstacles' vertices at time t (where they stand now for a static one), in order.
+static std::vector<Eigen::Vector3d> placed(const std::vector<TriangleMesh>& reference,
+                                           const std::vector<PrescribedMotion>& motions,
+                                           const std::vector<TriangleMesh>& now, double t) {
+  std::vector<Eigen::Vector3d> out;
+  for (std::size_t o = 0; o < reference.size(); ++o) {
+    if (!motions[o]) {
+      out.insert(out.end(), now[o].points.begin(), now[o].points.end());
+      continue;
+    }
+    const RigidPlacement phi = motions[o](t);
+    for (const Point3& X : reference[o].points) out.push_back(phi.position(X));
+  }
+  return out;
+}
+
+void ContactTerm::sync_obstacles() {
+  int k = num_shell_points_;
+  for (TriangleMesh& o : obstacles_)
+    for (Point3& p : o.points) p = rest_[k++];
+  update_obstacle_boxes();
+}
+
+void ContactTerm::place_obstacles(double t) {
+  if (!moving_) return;
+  target_ = placed(obstacle_reference_, motions_, obstacles_, t);
+  std::copy(target_.begin(), target_.end(), rest_.begin() + num_shell_points_);
+  sync_obstacles();
+}
+
+void ContactTerm::begin_step(const StepStart& start) {
+  EnergyTerm::begin_step(start);
+  if (moving_) target_ = placed(obstacle_reference_, motions_, obstacles_, start.time);
+}
+
+double ContactTerm::constraint_violation(const std::vector<double>&) const {
+  double most = 0.0;
+  for (std::size_t k = 0; k < target_.size(); ++k)
+    most = std::max(most, (target_[k] - rest_[num_shell_points_ + k]).norm());
+  return most;
+}
+
+void ContactTerm::update_multipliers(const std::vector<double>&, double) { advance_obstacles(); }
+
+void ContactTerm::advance_obstacles() {
+  // The shell where the last prepare(u) saw it, fixed; every obstacle vertex on the chord to
+  // its target. Only shell–obstacle pairs, each by its owner, whose own primitives are local.
+  const int total = static_cast<int>(rest_.size());
+  std::vector<int> compact(total, -1), vertex_id;
+  std::vector<Eigen::Vector3d> x0, x1;
+  for (std::size_t i = 0; i < x_.size(); ++i)
+    if (vertex_id_[i] < num_shell_points_) {
+      compact[vertex_id_[i]] = static_cast<int>(x0.size());
+      x0.push_back(x_[i]), x1.push_back(x_[i]), vertex_id.push_back(vertex_id_[i]);
+    }
+  for (int v = num_shell_points_; v < total; ++v) {
+    compact[v] = static_cast<int>(x0.size());
+    x0.push_back(rest_[v]), x1.push_back(target_[v - num_shell_points_]), vertex_id.push_back(v);
+  }
+  std::vector<int> edge_id, face_id;
+  const ContactSurface known =
+      known_surface(compact, static_cast<int>(x0.size()), edge_id, face_id);
+  std::vector<Pair> pairs;
+  own_pairs(find_swept_candidates(known, x0, x1, settings_.barrier.thickness), known, vertex_id,
+            edge_id, face_id, false, pairs);
+  double toi = 1.0;
+  for (const Pair& p : pairs) {
+    Vector12 a, d;
+    for (int i = 0; i < 4; ++i)
+      a.segment<3>(3 * i) = x0[p.v[i]], d.segment<3>(3 * i) = x1[p.v[i]] - x0[p.v[i]];
+    const CcdResult r = p.edge_edge
+                            ? edge_edge_ccd(a, d, settings_.barrier.thickness, toi, settings_.ccd)
+                            : point_triangle_ccd(a, d, settings_.barrier.thickness, toi, settings_.ccd);
+    if (r.may_collide) toi = std::min(toi, r.toi);
+  }
+  double all;
+  PetscCallAbort(layout_.comm(),
+                 MPI_Allreduce(&toi, &all, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
+  for (int v = num_shell_points_; v < total; ++v) {
+    const Eigen::Vector3d& target = target_[v - num_shell_points_];
+    rest_[v] = all >= 1.0 ? target : Eigen::Vector3d(rest_[v] + all * (target - rest_[v]));
+  }
+  if (all > 0.0) ++revision_;
+  sync_obstacles();
 }
 
 PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
@@ -236,9 +336,30 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
       PetscFunctionReturn(0);
     }
   }
-  ContactSurface known;
-  known.num_vertices = static_cast<int>(x_.size());
   std::vector<int> edge_id, face_id;
+  const ContactSurface known = known_surface(compact, static_cast<int>(x_.size()), edge_id, face_id);
+
+  ContactCandidates candidates;
+  if (swept_) {
+    std::vector<Eigen::Vector3d> x1(x_.size());
+    for (std::size_t i = 0; i < x_.size(); ++i) x1[i] = x_[i] + dx_[i];
+    candidates = find_swept_candidates(known, x_, x1, settings_.barrier.thickness);
+  } else {
+    candidates = find_proximity_candidates(known, x_, list_reach);
+  }
+
+  pairs_.clear();
+  own_pairs(candidates, known, vertex_id_, edge_id, face_id, settings_.self_contact, pairs_);
+  if (!swept_) list_vertex_id_ = vertex_id_, list_x_ = x_, list_pairs_ = pairs_, ++list_builds_;
+  PetscFunctionReturn(0);
+}
+
+ContactSurface ContactTerm::known_surface(const std::vector<int>& compact, int num_vertices,
+                                          std::vector<int>& edge_id,
+                                          std::vector<int>& face_id) const {
+  ContactSurface known;
+  known.num_vertices = num_vertices;
+  edge_id.clear(), face_id.clear();
   for (int e = 0; e < static_cast<int>(surface_.edges.size()); ++e) {
     const auto& [a, b] = surface_.edges[e];
     if (compact[a] < 0 || compact[b] < 0) continue;
@@ -251,43 +372,37 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
     known.faces.push_back({compact[t[0]], compact[t[1]], compact[t[2]]});
     face_id.push_back(f);
   }
+  return known;
+}
 
-  ContactCandidates candidates;
-  if (swept_) {
-    std::vector<Eigen::Vector3d> x1(x_.size());
-    for (std::size_t i = 0; i < x_.size(); ++i) x1[i] = x_[i] + dx_[i];
-    candidates = find_swept_candidates(known, x_, x1, settings_.barrier.thickness);
-  } else {
-    candidates = find_proximity_candidates(known, x_, list_reach);
-  }
-
-  // This rank's pairs (contact_term.hpp's ownership).
-  pairs_.clear();
+void ContactTerm::own_pairs(const ContactCandidates& candidates, const ContactSurface& known,
+                            const std::vector<int>& vertex_id, const std::vector<int>& edge_id,
+                            const std::vector<int>& face_id, bool shell_shell,
+                            std::vector<Pair>& out) const {
+  const int rank = layout_.rank();
   const auto mine_point = [&](int v) {
     const int l = layout_.local_of(v);
     return l >= 0 && l < layout_.num_owned_points();
   };
   for (const auto& [cv, cf] : candidates.point_triangle) {
-    const int v = vertex_id_[cv], f = face_id[cf];
+    const int v = vertex_id[cv], f = face_id[cf];
     const bool shell_v = v < num_shell_points_, shell_f = f < num_shell_faces_;
     if (!shell_v && !shell_f) continue;
-    if (shell_v && shell_f && !settings_.self_contact) continue;
+    if (shell_v && shell_f && !shell_shell) continue;
     if (shell_v ? !mine_point(v) : layout_.face_owner(f) != rank) continue;
     const auto& t = known.faces[cf];
-    pairs_.push_back({false, {cv, t[0], t[1], t[2]}});
+    out.push_back({false, {cv, t[0], t[1], t[2]}});
   }
   for (const auto& [ca, cb] : candidates.edge_edge) {
     const int a = edge_id[ca], b = edge_id[cb];
     const bool shell_a = a < num_shell_edges_, shell_b = b < num_shell_edges_;
     if (!shell_a && !shell_b) continue;
-    if (shell_a && shell_b && !settings_.self_contact) continue;
+    if (shell_a && shell_b && !shell_shell) continue;
     const int owner_edge = shell_a ? a : b;  // edge ids are sorted: a < b
     if (edge_owner_[owner_edge] != rank) continue;
     const auto &ea = known.edges[ca], &eb = known.edges[cb];
-    pairs_.push_back({true, {ea[0], ea[1], eb[0], eb[1]}});
+    out.push_back({true, {ea[0], ea[1], eb[0], eb[1]}});
   }
-  if (!swept_) list_vertex_id_ = vertex_id_, list_x_ = x_, list_pairs_ = pairs_, ++list_builds_;
-  PetscFunctionReturn(0);
 }
 
 Vector12 ContactTerm::stencil(const Pair& p, double t) const {
@@ -411,10 +526,12 @@ PetscErrorCode ContactTerm::min_squared_distance(double* d) const {
 void ContactTerm::after_accept(const std::vector<double>&) {
   double d = INFINITY;
   PetscCallAbort(layout_.comm(), min_squared_distance(&d));
+  const double kappa = kappa_;
   if (settings_.stiffness == 0.0 && std::isfinite(d) && std::isfinite(prev_min_distance_))
     kappa_ = update_barrier_stiffness(prev_min_distance_, d, kappa_max_, kappa_,
                                       settings_.bbox_diagonal, settings_.barrier.thickness,
                                       kCloseGap * settings_.barrier.gap / settings_.bbox_diagonal);
+  if (kappa_ != kappa) ++revision_;
   prev_min_distance_ = d;
 }
 

@@ -67,6 +67,12 @@ PetscErrorCode LevelProblem::max_step(Vec u, Vec du, PetscReal* alpha) {
   PetscFunctionReturn(0);
 }
 
+long LevelProblem::revision() const {
+  long r = 0;
+  for (const auto& t : terms_) r += t->revision();
+  return r;
+}
+
 PetscErrorCode LevelProblem::accepted(Vec u) {
   PetscFunctionBeginUser;
   PetscCall(prepare_terms(u, nullptr));
@@ -284,8 +290,7 @@ PetscErrorCode LevelProblem::constraint_violations(Vec u, std::vector<double>& v
   return reduce_per_term(
       u,
       [](const EnergyTerm& t, const std::vector<double>& ul) {
-        const auto* p = dynamic_cast<const PenaltyTerm*>(&t);
-        return p ? p->max_violation(ul) : 0.0;
+        return t.constraint_violation(ul);
       },
       MPI_MAX, violations);
 }

@@ -559,7 +559,7 @@ MUTATIONS = [
      "  ++version_, ++rebuilds_;", "  ++rebuilds_;",
      "the Hessian's pattern never follows the contact pairs", ()),
     ("contact-self-always", "src/contact/contact_term.cpp",
-     "    if (shell_v && shell_f && !settings_.self_contact) continue;\n", "",
+     "    if (shell_v && shell_f && !shell_shell) continue;\n", "",
      "`self: false` still counts the shell's point–triangle pairs with itself", ()),
     ("contact-snes-precheck-dropped", "solvers/step_solver.cpp",
      "    PetscCallAbort(comm,\n                   SNESLineSearchSetPreCheck(line_search, admissible_direction, &problem_));",

@@ -3,6 +3,7 @@
 // pattern growing under the same matrix handle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -160,6 +161,51 @@ TEST(ContactTerm, SelfContactOffLeavesNoShellPairs) {
       EXPECT_GT(stats.active, 100);
     } else {
       EXPECT_EQ(stats.candidates, 0);
+    }
+    VecDestroy(&u);
+  }
+}
+
+// A collider with a motion advances towards its target only as far as CCD allows against the
+// shell where it is: a plane 5 cm below the sheet, moving 10 cm up, stops short of the sheet's
+// thickness and stays short of its target; moving 10 cm down, it arrives in one advance.
+TEST(ContactTerm, MovingColliderAdvancesOnlyAsFarAsCollisionDetectionAllows) {
+  for (const double dz : {0.1, -0.1}) {
+    std::string yaml = contact_scene(false);
+    const std::string plane = "side: 1.0}}";
+    yaml.replace(yaml.find(plane), plane.size(),
+                 "side: 1.0}, motion: {translate: [0, 0, " + std::to_string(dz) +
+                     "], over: [0, 1]}}");
+    const Scene scene = triangle_scene("contact_moving", yaml);
+    TriangleProblem tp(scene, PETSC_COMM_SELF);  // begin_step at t = dt = 1: the full motion
+    LevelProblem& problem = *tp.problem;
+    auto* contact = problem.find_term<ContactTerm>();
+    ASSERT_TRUE(contact->obstacles_move());
+    Vec u;
+    tp.layout().create_vector(&u);
+    VecZeroEntries(u);
+    std::vector<double> violations;
+    problem.constraint_violations(u, violations);
+    const double before = *std::max_element(violations.begin(), violations.end());
+    EXPECT_NEAR(before, 0.1, 1e-12);
+    bool met = true;
+    problem.update_multipliers(u, &met);
+    EXPECT_FALSE(met);
+    problem.constraint_violations(u, violations);
+    const double after = *std::max_element(violations.begin(), violations.end());
+    double d;
+    contact->min_squared_distance(&d);
+    if (dz > 0) {  // up into the sheet: short of it, a gap left above the thickness
+      EXPECT_GT(after, 0.06);
+      EXPECT_LT(after, 0.1);
+      EXPECT_GT(std::sqrt(d), 0.01);
+      double f;
+      problem.objective(u, &f, nullptr);
+      EXPECT_TRUE(std::isfinite(f));
+    } else {  // away from it: there at once
+      EXPECT_EQ(after, 0.0);
+      problem.update_multipliers(u, &met);
+      EXPECT_TRUE(met);
     }
     VecDestroy(&u);
   }
