@@ -84,10 +84,8 @@ def main():
     lut.ApplyPreset("Viridis (matplotlib)", True)
     lut.RescaleTransferFunction(0.0, max(umax * factor, 1e-30))
     shown.Specular, shown.SpecularPower = 0.25, 40.0
-    # Contact scenes write their colliders (moving ones at every frame): grey, beside the shell.
-    colliders = folder / f"colliders_{step:06d}.obj"  # moving ones, at this frame
-    if not colliders.exists():
-        colliders = folder / "colliders.obj"
+    # Contact scenes write their colliders once: grey, beside the shell.
+    colliders = folder / "colliders.obj"
     if colliders.exists():
         obstacle = pv.Transform(Input=pv.OpenDataFile(str(colliders)))
         obstacle.Transform.Scale = [1.0, 1.0, a.zscale]

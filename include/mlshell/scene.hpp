@@ -292,8 +292,7 @@ struct ContactEffect {
 /// A static obstacle for contact (needs a `contact` effect):
 /// `collider: {sphere: {center: [x, y, z], radius: r, subdivisions: 3}}`,
 /// `collider: {plane: {point: [x, y, z], normal: [nx, ny, nz], size: s}}` (a square of side s),
-/// `collider: {box: {center: [x, y, z], size: [sx, sy, sz]}}` or `collider: {obj: path}`, each
-/// with an optional `motion: MOTION`.
+/// `collider: {box: {center: [x, y, z], size: [sx, sy, sz]}}` or `collider: {obj: path}`.
 struct ColliderEffect {
   enum class Shape { kSphere, kPlane, kBox, kObj } shape = Shape::kSphere;
   Vec3 center{0, 0, 0};            ///< sphere and box centre; the plane's point
@@ -303,9 +302,6 @@ struct ColliderEffect {
   std::optional<double> side;      ///< plane: the square's side; default 10 × the shell's size
   Vec3 size{1, 1, 1};              ///< box edge lengths, > 0
   std::filesystem::path obj;       ///< obj: the resolved path of a triangle surface
-  /// A scripted rigid motion (MOTION, as dirichlet's): the collider advances towards it as far
-  /// as collision detection allows, the shell giving way, until it is there (docs/contact.md).
-  std::optional<Motion> motion;
 };
 
 using Effect = std::variant<InertiaEffect, GravityEffect, SurfaceLoadEffect, LineLoadEffect,

@@ -182,9 +182,8 @@ class Simulation {
   /// Contact scenes at the first frame: the shell must start farther than the thickness ξ from
   /// itself and the colliders (else SceneError); writes colliders.obj.
   PetscErrorCode start_contact();
-  /// colliders.obj at the first frame; with moving colliders also colliders_<step>.obj at every
-  /// frame (rank 0).
-  void write_colliders(int step) const;
+  /// colliders.obj: the colliders, one object each (rank 0).
+  void write_colliders() const;
   /// The contact section of summary.json (collective; null without contact).
   PetscErrorCode contact_summary(Json* out) const;
   std::string audit_message_;  ///< of the last frame audited, if it intersects

@@ -180,12 +180,10 @@ Effect read_collider(const Field& params, const GeometrySpec& geometry, const fs
                "geometry: {mesh: {...}}");
   constexpr std::string_view kShapes =
       "{sphere: {center, radius}}, {plane: {point, normal}}, {box: {center, size}} or {obj: path}";
-  params.check(params.is_map(), "a collider is one shape", kShapes);
+  params.check(params.is_map() && params.entries().size() == 1, "a collider is one shape",
+               kShapes);
   ColliderEffect c;
-  c.motion = optional_motion(params);
-  auto entries = params.entries();
-  std::erase_if(entries, [](const auto& entry) { return entry.first == "motion"; });
-  params.check(entries.size() == 1, "a collider is one shape (and an optional motion)", kShapes);
+  const auto entries = params.entries();
   const auto& [shape, field] = entries.front();
   if (shape == "sphere") {
     field.expect_keys({"center", "radius", "subdivisions"});

@@ -2,7 +2,6 @@
 // it accepts, the check of the start, the colliders' surface as output and the summary's
 // contact section. The audit of every frame against the colliders is in audit_frame.
 #include <cmath>
-#include <cstdio>
 #include <iomanip>
 #include <sstream>
 
@@ -45,7 +44,6 @@ void Simulation::check_contact_solver() const {
 PetscErrorCode Simulation::start_contact() {
   PetscFunctionBeginUser;
   ContactTerm* contact = contact_;
-  contact->place_obstacles(first_step_ * scene_.time.dt);  // a restart: where they are then
   PetscCall(contact->prepare(u_, nullptr));
   double d;
   PetscCall(contact->min_squared_distance(&d));
@@ -58,15 +56,13 @@ PetscErrorCode Simulation::start_contact() {
             << "`thickness`";
     throw SceneError(message.str());
   }
-  write_colliders(first_step_);
+  if (rank_ == 0 && !contact_->obstacles().empty()) write_colliders();
   PetscFunctionReturn(0);
 }
 
-void Simulation::write_colliders(int step) const {
-  if (rank_ != 0 || !contact_ || contact_->obstacles().empty()) return;
+void Simulation::write_colliders() const {
   std::ostringstream obj;
-  obj << "# mlshell colliders of " << scene_.name << " at step " << step
-      << ", one object per collider\n"
+  obj << "# mlshell colliders of " << scene_.name << ", one object per collider\n"
       << std::setprecision(17);
   int offset = 1;
   for (std::size_t k = 0; k < contact_->obstacles().size(); ++k) {
@@ -77,13 +73,7 @@ void Simulation::write_colliders(int step) const {
       obj << "f " << t[0] + offset << ' ' << t[1] + offset << ' ' << t[2] + offset << '\n';
     offset += m.num_points();
   }
-  // Static colliders once; moving ones at every frame as well.
-  if (step == first_step_) write_file_atomic(output_->dir / "colliders.obj", obj.str());
-  if (contact_->obstacles_move()) {
-    char name[64];
-    std::snprintf(name, sizeof name, "colliders_%06d.obj", step);
-    write_file_atomic(output_->dir / name, obj.str());
-  }
+  write_file_atomic(output_->dir / "colliders.obj", obj.str());
 }
 
 PetscErrorCode Simulation::contact_summary(Json* out) const {
@@ -100,7 +90,6 @@ PetscErrorCode Simulation::contact_summary(Json* out) const {
       {"gap", Json(c.barrier.gap)},
       {"self", Json(c.self_contact)},
       {"colliders", Json(static_cast<long long>(contact->obstacles().size()))},
-      {"colliders_move", Json(contact->obstacles_move())},
       {"stiffness", Json(s.stiffness)},
       {"stiffness_fixed", Json(c.stiffness > 0.0)},
       {"candidate_pairs", Json(static_cast<long long>(s.candidates))},

@@ -51,7 +51,6 @@ PetscErrorCode Simulation::write_frame(int n, double t, bool force, bool converg
   const bool frame_due = force || n % scene_.output.every == 0;
   // run() audits the start
   if (frame_due) PetscCall(write_series_frame(output_->frames, u_, n, t, n > first_step_));
-  if (frame_due && n > first_step_) write_colliders(n);  // moving colliders (the start: run())
   // Only converged states are worth restarting from.
   const bool checkpoint_due = converged && scene_.output.checkpoint_every > 0 && n > 0 &&
                               n % scene_.output.checkpoint_every == 0;

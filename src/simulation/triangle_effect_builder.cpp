@@ -97,16 +97,10 @@ std::unique_ptr<ContactTerm> build_contact_term(const Scene& scene, const Contac
   settings.vertex_force = std::max(per_area * area / mesh.num_points(),
                                    1e-4 * membrane_stiffness * settings.barrier.gap);
   std::vector<TriangleMesh> obstacles;
-  std::vector<PrescribedMotion> motions;
   for (const Effect& e : scene.effects)
-    if (const auto* collider = std::get_if<ColliderEffect>(&e)) {
+    if (const auto* collider = std::get_if<ColliderEffect>(&e))
       obstacles.push_back(make_collider_mesh(*collider, lo, hi, edge_length));
-      motions.push_back(collider->motion ? motion_function(collider->motion) : nullptr);
-    }
-  auto term =
-      std::make_unique<ContactTerm>("contact", mesh, layout, std::move(obstacles), settings);
-  term->set_obstacle_motions(std::move(motions));
-  return term;
+  return std::make_unique<ContactTerm>("contact", mesh, layout, std::move(obstacles), settings);
 }
 
 }  // namespace

@@ -54,7 +54,6 @@
 #include "mlshell/contact/broad_phase/contact_candidates.hpp"
 #include "mlshell/contact/ccd/additive_ccd.hpp"
 #include "mlshell/energy_term.hpp"
-#include "mlshell/prescribed_motion.hpp"
 #include "mlshell/triangle/triangle_mesh.hpp"
 
 namespace mlshell {
@@ -86,29 +85,6 @@ class ContactTerm final : public EnergyTerm {
   /// Throws std::invalid_argument for settings out of range.
   ContactTerm(std::string name, const TriangleMesh& shell, const ParallelLayout& layout,
               std::vector<TriangleMesh> obstacles, ContactSettings settings);
-  /// Obstacles with scripted motions (null: static), one per obstacle: each is placed at its
-  /// motion's time-0 position here, and moves as below.
-  void set_obstacle_motions(std::vector<PrescribedMotion> motions);
-
-  // Scripted obstacles (collider `motion`). A step's begin_step sets their target, the placement
-  // at the step's time; they stay where they are while the step is solved. At equilibrium the
-  // time stepper's constraint loop (has_multipliers) finds them short of the target and
-  // update_multipliers moves them along the chord from where they are to the target, as far as
-  // additive CCD against the shell at u allows, and the step is solved again, the shell giving
-  // way, until they arrive. So an obstacle never jumps into the shell. Each such advance ends
-  // with a gap of about a tenth of the one it started from (CCD's η = 0.9), so an obstacle that
-  // pushes the shell far in one step takes many solves: give its motion enough load steps.
-  bool has_multipliers() const override { return moving_; }
-  /// The largest distance (m) of an obstacle vertex from its target.
-  double constraint_violation(const std::vector<double>& u) const override;
-  double constraint_tolerance() const override { return 0.0; }
-  void begin_step(const StepStart& start) override;
-  /// Advances the obstacles towards their targets (collective; after prepare(u)).
-  void update_multipliers(const std::vector<double>& u, double violation) override;
-  /// Puts the obstacles at their placement at time t (a restart).
-  void place_obstacles(double t);
-  bool obstacles_move() const { return moving_; }
-
   bool needs_prepare() const override { return true; }
   /// The halo exchange and broad phase at u (proximity) or along u → u + du (swept).
   PetscErrorCode prepare(Vec u, Vec du) override;
@@ -131,7 +107,6 @@ class ContactTerm final : public EnergyTerm {
   /// The smallest squared pair distance among the prepared candidates, over all ranks
   /// (collective); +∞ without candidates.
   PetscErrorCode min_squared_distance(double* d) const;
-  /// The obstacles where they are now (their points move with their motions).
   const std::vector<TriangleMesh>& obstacles() const { return obstacles_; }
   const ContactSettings& settings() const { return settings_; }
   double stiffness() const { return kappa_; }
@@ -159,8 +134,6 @@ class ContactTerm final : public EnergyTerm {
   std::vector<int> own_box_points_;        ///< local indices of their vertices
   std::vector<Eigen::Matrix<double, 6, 1>> obstacle_boxes_;  ///< each obstacle face's (lo, hi)
   void update_obstacle_boxes();
-  /// obstacles_ (and their boxes) from the obstacle part of rest_.
-  void sync_obstacles();
   /// The surface of the vertices with compact[v] ≥ 0 (num_vertices of them): the edges and faces
   /// whose vertices all are, and their global ids.
   ContactSurface known_surface(const std::vector<int>& compact, int num_vertices,
@@ -170,14 +143,7 @@ class ContactTerm final : public EnergyTerm {
   void own_pairs(const ContactCandidates& candidates, const ContactSurface& known,
                  const std::vector<int>& vertex_id, const std::vector<int>& edge_id,
                  const std::vector<int>& face_id, bool shell_shell, std::vector<Pair>& out) const;
-  std::vector<TriangleMesh> obstacle_reference_;  ///< the obstacles at time 0
-  std::vector<PrescribedMotion> motions_;         ///< per obstacle; null: static
-  std::vector<Eigen::Vector3d> target_;           ///< per obstacle vertex
-  bool moving_ = false;
-  long revision_ = 0;  ///< κ changes and obstacle moves
-  /// Moves the obstacles along their chords towards their targets as far as CCD against the
-  /// shell of the last prepare allows (collective).
-  void advance_obstacles();
+  long revision_ = 0;  ///< changes of κ
   double kappa_ = 0.0, kappa_max_ = 0.0, prev_min_distance_ = INFINITY;
 
   // The prepared state, on the compact surface of the vertices this rank knows.
