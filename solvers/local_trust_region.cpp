@@ -262,7 +262,7 @@ PetscErrorCode LocalTrustRegion::accepted() {
   ++counters_.accepted;
   const long revision = f_.revision();
   PetscCall(f_.accepted(x_));
-  if (f_.revision() != revision) PetscCall(f_.objective(x_, &fx_, g_));  // κ, colliders
+  if (f_.revision() != revision) PetscCall(f_.objective(x_, &fx_, g_));  // contact's κ
   PetscCall(assemble_derivatives(false));
   // The trial value was finite, so the same point evaluated with its gradient must be too.
   PetscCheck(finite_, PetscObjectComm((PetscObject)x_), PETSC_ERR_FP,

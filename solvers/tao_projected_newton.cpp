@@ -159,7 +159,7 @@ PetscErrorCode solve(Tao tao) {
     f = ft;
     const long revision = f_obj.revision();
     PetscCall(f_obj.accepted(x));
-    if (f_obj.revision() != revision) PetscCall(f_obj.objective(x, &f, g));  // κ, colliders
+    if (f_obj.revision() != revision) PetscCall(f_obj.objective(x, &f, g));  // contact's κ
     PetscCall(VecNorm(g, NORM_2, &gnorm));
     ++tao->niter;
     PetscInt its;
