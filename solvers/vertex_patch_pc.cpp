@@ -311,8 +311,11 @@ PetscErrorCode setup(PC pc) {
         p->off_diagonal.column_dof[k] = 3 * it->second + static_cast<int>(garray[k] % 3);
     }
     // Rows of the points other ranks own (collective: every rank calls it).
+    // A new pattern under the same matrix (contact pairs: LevelProblem::hessian) takes new rows.
+    const bool reuse = !first && pc->flag != DIFFERENT_NONZERO_PATTERN && p->ghost_rows;
+    if (!first && !reuse && p->ghost_rows) PetscCall(MatDestroySubMatrices(1, &p->ghost_rows));
     PetscCall(MatCreateSubMatrices(pc->pmat, 1, &p->ghost_is, &p->local_is,
-                                   first ? MAT_INITIAL_MATRIX : MAT_REUSE_MATRIX, &p->ghost_rows));
+                                   reuse ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &p->ghost_rows));
     PetscCall(p->ghost.open(p->ghost_rows[0]));
   }
   PetscCall(p->diagonal.open(diagonal));

@@ -299,7 +299,7 @@ struct ColliderEffect {
   double radius = 0.0;             ///< sphere, > 0
   int subdivisions = 3;            ///< sphere: icosphere subdivisions, 0..6
   Vec3 normal{0, 0, 1};            ///< plane, non-zero (normalised)
-  std::optional<double> side;      ///< plane: the square's side; default 10 × the shell's size
+  std::optional<double> side;      ///< plane: the square's side; default 4 shell diagonals
   Vec3 size{1, 1, 1};              ///< box edge lengths, > 0
   std::filesystem::path obj;       ///< obj: the resolved path of a triangle surface
 };

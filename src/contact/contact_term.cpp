@@ -103,9 +103,15 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
     // One pair at half the gap holds the force per vertex: κ |b_ξ'(d½)| 2√d½ = f.
     const double half = settings_.barrier.thickness + 0.5 * settings_.barrier.gap;
     const double holding = std::abs(settings_.barrier.first_derivative(half * half)) * 2.0 * half;
-    kappa_ = std::max(min_barrier_stiffness(settings_.barrier, settings_.bbox_diagonal,
-                                            settings_.average_mass),
-                      settings_.vertex_force / holding);
+    // Massless shells (quasistatic scenes may have no density) have no κ_min.
+    const double by_mass = settings_.average_mass > 0.0
+                               ? min_barrier_stiffness(settings_.barrier, settings_.bbox_diagonal,
+                                                       settings_.average_mass)
+                               : 0.0;
+    kappa_ = std::max(by_mass, settings_.vertex_force / holding);
+    if (!(kappa_ > 0.0) || !std::isfinite(kappa_))
+      throw std::invalid_argument("contact: no barrier stiffness follows from the scene (no "
+                                  "mass and no force); give `stiffness`");
     kappa_max_ = 100.0 * kappa_;
   }
 }
@@ -126,6 +132,16 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
   std::vector<double> ul, dl;
   PetscCall(layout_.to_local(u, ul));
   if (swept_) PetscCall(layout_.to_local(du, dl));
+  // A non-finite iterate or step (a failed linear solve) has no pairs: its energy is +∞ and its
+  // step limit 0, on every rank alike, and the broad phase never sees it.
+  int finite = std::all_of(ul.begin(), ul.end(), [](double v) { return std::isfinite(v); }) &&
+               std::all_of(dl.begin(), dl.end(), [](double v) { return std::isfinite(v); });
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &finite, 1, MPI_INT, MPI_LAND, layout_.comm()));
+  finite_ = finite;
+  if (!finite_) {
+    pairs_.clear();
+    PetscFunctionReturn(0);
+  }
   const auto& points = layout_.local_points();
   auto position = [&](int l) {
     return Eigen::Vector3d(rest_[points[l]] + Eigen::Vector3d(ul[3 * l], ul[3 * l + 1], ul[3 * l + 2]));
@@ -321,7 +337,8 @@ double ContactTerm::squared_distance(const Pair& p) const {
   return p.edge_edge ? edge_edge_distance(a, b, c, d) : point_triangle_distance(a, b, c, d);
 }
 
-double ContactTerm::pair_energy(const Pair& p, Vector12* grad, Matrix12* hess) const {
+double ContactTerm::pair_energy(const Pair& p, Vector12* grad, Matrix12* hess, bool* active) const {
+  *active = false;
   const auto &a = x_[p.v[0]], &b = x_[p.v[1]], &c = x_[p.v[2]], &d = x_[p.v[3]];
   const ContactBarrier& barrier = settings_.barrier;
   const bool derivatives = grad || hess;
@@ -333,12 +350,14 @@ double ContactTerm::pair_energy(const Pair& p, Vector12* grad, Matrix12* hess) c
     const double dist = point_triangle_distance(a, b, c, d, type, derivatives ? &gd : nullptr,
                                                 hess ? &hd : nullptr);
     if (dist >= barrier.activation_squared_distance()) return 0.0;
+    *active = true;
     return barrier_pair_energy<12>(kappa_, barrier, dist, gd, hd, grad, hess, project);
   }
   const auto type = edge_edge_distance_type(a, b, c, d);
   const double dist =
       edge_edge_distance(a, b, c, d, type, derivatives ? &gd : nullptr, hess ? &hd : nullptr);
   if (dist >= barrier.activation_squared_distance()) return 0.0;
+  *active = true;
   const int *v = p.v.data();
   const double eps_x = edge_edge_mollifier_threshold(
       rest_[vertex_id_[v[0]]], rest_[vertex_id_[v[1]]], rest_[vertex_id_[v[2]]],
@@ -359,15 +378,21 @@ PetscErrorCode ContactTerm::add(const std::vector<double>&, CompensatedSum& ener
   PetscCheck(!swept_, PETSC_COMM_SELF, PETSC_ERR_ORDER,
              "contact: add() after a swept prepare(); prepare(u, nullptr) first");
   remote_rows_.clear(), remote_values_.clear();
+  if (!finite_) {
+    energy.add(INFINITY);
+    PetscFunctionReturn(0);
+  }
   Vector12 g;
   Matrix12 h;
   std::vector<PetscInt> rows;
   std::vector<int> which;
   std::vector<double> block;
   for (const Pair& p : pairs_) {
-    const double e = pair_energy(p, grad ? &g : nullptr, hess ? &h : nullptr);
+    bool active;
+    const double e = pair_energy(p, grad ? &g : nullptr, hess ? &h : nullptr, &active);
     energy.add(e);
-    if (e == 0.0 || !std::isfinite(e)) continue;
+    // Exactly parallel edges have m = 0, so e = 0 and ∇e = 0, but their Hessian κ b ∇²m is not.
+    if (!active || !std::isfinite(e)) continue;
     if (grad)
       for (int i = 0; i < 4; ++i) {
         const int c = p.v[i];
@@ -408,6 +433,7 @@ PetscErrorCode ContactTerm::add_nonlocal_gradient(Vec g) const {
 double ContactTerm::max_step(const std::vector<double>&, const std::vector<double>&) const {
   if (!swept_) throw std::logic_error("contact: max_step() needs prepare(u, du)");
   const LogEventScope event("Contact:ccd");
+  if (!finite_) return 0.0;
   double alpha = 1.0;
   for (const Pair& p : pairs_) {
     const Vector12 x0 = stencil(p, 0.0), dx = stencil(p, 1.0) - x0;

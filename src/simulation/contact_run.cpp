@@ -26,13 +26,23 @@ void Simulation::check_contact_solver() const {
   const std::string& type = options_.solver->type;
   if (type == "pnewton" || type == "tr") return;
   if (type == "snes") {  // newtonls's line search starts within CCD's step (step_solver.cpp)
-    char snes_type[64] = "newtonls";
+    char snes_type[64] = "newtonls", line_search[64] = "bt";
+    PetscReal damping = 1.0;
     PetscCallAbort(comm_, PetscOptionsGetString(nullptr, nullptr, "-snes_type", snes_type,
                                                 sizeof snes_type, nullptr));
-    if (std::string(snes_type) == "newtonls") return;
-    throw SceneError(contact_key(scene_, *contact_) + ": -snes_type " + snes_type +
-                     " does not keep its steps within continuous collision detection's limit; "
-                     "contact scenes run SNES as newtonls (its line search is cut to it)");
+    PetscCallAbort(comm_, PetscOptionsGetString(nullptr, nullptr, "-snes_linesearch_type",
+                                                line_search, sizeof line_search, nullptr));
+    PetscCallAbort(comm_, PetscOptionsGetReal(nullptr, nullptr, "-snes_linesearch_damping",
+                                              &damping, nullptr));
+    const std::string t = snes_type, ls = line_search;
+    // Backtracking and the plain step never go beyond λ = 1 (with damping ≤ 1); the others
+    // may extrapolate past the direction CCD cut.
+    if (t == "newtonls" && (ls == "bt" || ls == "basic") && damping <= 1.0) return;
+    throw SceneError(contact_key(scene_, *contact_) + ": -snes_type " + t +
+                     " with -snes_linesearch_type " + ls + " (damping " +
+                     std::to_string(damping) +
+                     ") may step beyond continuous collision detection's limit; contact scenes "
+                     "run SNES as newtonls with the bt or basic line search, damping <= 1");
   }
   throw SceneError(contact_key(scene_, *contact_) + ": the solver '" + type +
                    "' does not keep its steps within continuous collision detection's limit, so "
@@ -56,6 +66,13 @@ PetscErrorCode Simulation::start_contact() {
             << "`thickness`";
     throw SceneError(message.str());
   }
+  const double reach = xi + contact->settings().barrier.gap;
+  if (d < reach * reach)  // a mesh finer than ξ + ĝ (self-contact) or a collider close by
+    PetscCall(PetscPrintf(comm_,
+                          "mlshell: warning: the contact barrier acts at the start: pairs %g m "
+                          "apart are within thickness + gap = %g m, so the shell is pushed "
+                          "even at rest; a smaller gap or thickness (or self: false) avoids it\n",
+                          std::sqrt(d), reach));
   if (rank_ == 0 && !contact_->obstacles().empty()) write_colliders();
   PetscFunctionReturn(0);
 }

@@ -100,7 +100,11 @@ std::unique_ptr<ContactTerm> build_contact_term(const Scene& scene, const Contac
   for (const Effect& e : scene.effects)
     if (const auto* collider = std::get_if<ColliderEffect>(&e))
       obstacles.push_back(make_collider_mesh(*collider, lo, hi, edge_length));
-  return std::make_unique<ContactTerm>("contact", mesh, layout, std::move(obstacles), settings);
+  try {
+    return std::make_unique<ContactTerm>("contact", mesh, layout, std::move(obstacles), settings);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(e.what());
+  }
 }
 
 }  // namespace

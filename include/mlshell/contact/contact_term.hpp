@@ -118,8 +118,9 @@ class ContactTerm final : public EnergyTerm {
   };
   /// Positions of the pair's four vertices (at the prepared state, plus t·dx).
   Vector12 stencil(const Pair& p, double t) const;
-  /// The pair's energy and, where not null, gradient and Hessian; +∞ for d ≤ ξ².
-  double pair_energy(const Pair& p, Vector12* grad, Matrix12* hess) const;
+  /// The pair's energy and, where not null, gradient and Hessian; +∞ for d ≤ ξ². *active:
+  /// whether the pair is within ξ + ĝ (else nothing is written).
+  double pair_energy(const Pair& p, Vector12* grad, Matrix12* hess, bool* active) const;
   double squared_distance(const Pair& p) const;
   void collect_pairs(const ContactCandidates& c);
 
@@ -148,6 +149,7 @@ class ContactTerm final : public EnergyTerm {
 
   // The prepared state, on the compact surface of the vertices this rank knows.
   bool swept_ = false;
+  bool finite_ = true;  ///< the prepared u (and du) are finite on every rank
   std::vector<Eigen::Vector3d> x_, dx_;
   std::vector<int> vertex_id_, local_index_;  ///< compact → surface id, → local point (−1)
   std::vector<PetscInt> block_index_;         ///< compact → PETSc block (−1: obstacle)
