@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "mlshell/objective.hpp"
 #include "mlshell/step_solver.hpp"
+#include "separable_quartic.hpp"
 #include "solver_test_support.hpp"
 
 using namespace mlshell;
@@ -17,39 +17,9 @@ namespace {
 
 /// f(x) = Σ ½ c x_i² + ¼ x_i⁴ − b_i x_i. Each time an accepted iterate is nearly stationary
 /// (‖∇f‖ < 10⁻⁴), c doubles (at most three times), as IPC's κ does when the gap stops shrinking.
-class Stiffening final : public Objective {
+class Stiffening final : public SeparableQuartic {
  public:
-  PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
-    const PetscScalar* a;
-    PetscCall(VecGetArrayRead(x, &a));
-    PetscScalar* ga = nullptr;
-    if (g) PetscCall(VecGetArray(g, &ga));
-    double sum = 0.0;
-    for (int i = 0; i < kN; ++i) {
-      sum += 0.5 * c_ * a[i] * a[i] + 0.25 * std::pow(a[i], 4) - load(i) * a[i];
-      if (g) ga[i] = c_ * a[i] + std::pow(a[i], 3) - load(i);
-    }
-    if (g) PetscCall(VecRestoreArray(g, &ga));
-    PetscCall(VecRestoreArrayRead(x, &a));
-    *f = sum;
-    return 0;
-  }
-  PetscErrorCode hessian(Vec x, Mat H) override {
-    const PetscScalar* a;
-    PetscCall(VecGetArrayRead(x, &a));
-    for (PetscInt i = 0; i < kN; ++i)
-      PetscCall(MatSetValue(H, i, i, c_ + 3 * a[i] * a[i], INSERT_VALUES));
-    PetscCall(VecRestoreArrayRead(x, &a));
-    PetscCall(MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
-    return 0;
-  }
-  PetscErrorCode create_hessian(Mat* H) const override {
-    PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, kN, kN, 1, nullptr, H));
-    for (PetscInt i = 0; i < kN; ++i) PetscCall(MatSetValue(*H, i, i, 0.0, INSERT_VALUES));
-    PetscCall(MatAssemblyBegin(*H, MAT_FINAL_ASSEMBLY));
-    return MatAssemblyEnd(*H, MAT_FINAL_ASSEMBLY);
-  }
+  Stiffening() : SeparableQuartic({1, 1, 1, 1}, {1.0, 1.5, 2.0, 2.5}) {}
   PetscErrorCode accepted(Vec x) override {
     Vec g;
     PetscCall(VecDuplicate(x, &g));
@@ -57,7 +27,10 @@ class Stiffening final : public Objective {
     PetscCall(objective(x, &f, g));
     PetscCall(VecNorm(g, NORM_2, &gnorm));
     PetscCall(VecDestroy(&g));
-    if (gnorm < 1e-4 && doublings_ < 3) c_ *= 2, ++doublings_;
+    if (gnorm < 1e-4 && doublings_ < 3) {
+      for (double& a : a_) a *= 2;
+      ++doublings_;
+    }
     return 0;
   }
   long revision() const override { return doublings_; }
@@ -65,8 +38,6 @@ class Stiffening final : public Objective {
   static constexpr int kN = 4;
 
  private:
-  static double load(int i) { return 1.0 + 0.5 * i; }
-  double c_ = 1.0;
   int doublings_ = 0;
 };
 

@@ -5,6 +5,7 @@
 //   LINE_SEARCH     a Newton matrix 1000× too soft: its steps overshoot, α < γ;
 //   LINEAR_SOLVE_FAILED  a negative definite matrix: d ascends, the step refuses it.
 #include "mlshell/proxy_step.hpp"
+#include "separable_quartic.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,40 +16,12 @@ using namespace mlshell;
 
 namespace {
 
-class Quartic final : public Objective {
+/// a_i = 1 + i, b_i = 2 − i/2 over six unknowns.
+class Quartic final : public SeparableQuartic {
  public:
-  explicit Quartic(double matrix_scale) : scale_(matrix_scale) {}
-  PetscErrorCode objective(Vec x, PetscReal* f, Vec g) override {
-    const PetscScalar* a;
-    PetscCall(VecGetArrayRead(x, &a));
-    PetscScalar* ga = nullptr;
-    if (g) PetscCall(VecGetArray(g, &ga));
-    double sum = 0.0;
-    for (int i = 0; i < kN; ++i) {
-      sum += 0.5 * coef(i) * a[i] * a[i] + 0.25 * std::pow(a[i], 4) - load(i) * a[i];
-      if (g) ga[i] = coef(i) * a[i] + std::pow(a[i], 3) - load(i);
-    }
-    if (g) PetscCall(VecRestoreArray(g, &ga));
-    PetscCall(VecRestoreArrayRead(x, &a));
-    *f = sum;
-    return 0;
-  }
-  PetscErrorCode hessian(Vec x, Mat H) override {
-    const PetscScalar* a;
-    PetscCall(VecGetArrayRead(x, &a));
-    for (PetscInt i = 0; i < kN; ++i)
-      PetscCall(MatSetValue(H, i, i, scale_ * (coef(i) + 3 * a[i] * a[i]), INSERT_VALUES));
-    PetscCall(VecRestoreArrayRead(x, &a));
-    PetscCall(MatAssemblyBegin(H, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(H, MAT_FINAL_ASSEMBLY));
-    return 0;
-  }
+  explicit Quartic(double matrix_scale)
+      : SeparableQuartic({1, 2, 3, 4, 5, 6}, {2.0, 1.5, 1.0, 0.5, 0.0, -0.5}, matrix_scale) {}
   static constexpr int kN = 6;
-
- private:
-  static double coef(int i) { return 1.0 + i; }
-  static double load(int i) { return 2.0 - 0.5 * i; }
-  double scale_;
 };
 
 struct StepRun {
