@@ -531,6 +531,9 @@ PetscErrorCode Simulation::run(int* status) {
     for (const char* c : {"energy_total", "iterations", "linear_iterations", "gradient_norm",
                           "converged", "reason", "wall_time"})
       cols.push_back(c);
+    if (contact_)
+      for (const char* c : {"contact_active_pairs", "contact_min_distance", "contact_stiffness"})
+        cols.push_back(c);
     // Effects of one kind may repeat: number the columns so the header stays unique.
     for (size_t i = 0; i < cols.size(); ++i)
       for (size_t j = i + 1; j < cols.size(); ++j)
@@ -579,6 +582,17 @@ PetscErrorCode Simulation::run(int* status) {
           report.reason.c_str(), wall));
     PetscCall(report_material(n));
     PetscCall(report_constraints(n));
+    ContactStatistics contact;
+    if (contact_) {
+      PetscCall(contact_->prepare(u_, nullptr));
+      PetscCall(contact_->statistics(&contact));
+      if (!options_.quiet)
+        PetscCall(PetscPrintf(comm_,
+                              "          contact: %ld active pair(s), smallest distance %.4g m "
+                              "(thickness %.4g m), stiffness %.3e\n",
+                              contact.active, contact.min_distance,
+                              contact_->settings().barrier.thickness, contact.stiffness));
+    }
     if (output_->csv) {
       std::vector<std::variant<double, long long, std::string>> row{static_cast<long long>(n),
                                                                     n * scene_.time.dt};
@@ -590,6 +604,11 @@ PetscErrorCode Simulation::run(int* status) {
       row.emplace_back(static_cast<long long>(report.converged));
       row.emplace_back(report.reason);
       row.emplace_back(wall);
+      if (contact_) {
+        row.emplace_back(static_cast<long long>(contact.active));
+        row.emplace_back(contact.min_distance);  // inf without pairs
+        row.emplace_back(contact.stiffness);
+      }
       output_->csv->append(row);
     }
     {

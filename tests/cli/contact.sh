@@ -59,6 +59,10 @@ assert max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v)) < 1e-8, "1 vs
 assert max(abs(p - q) for u, v in zip(a, c) for p, q in zip(u, v)) < 1e-3, "one load step"
 d = final("trust_region")
 assert max(abs(p - q) for u, v in zip(a, d) for p, q in zip(u, v)) < 1e-6, "tr against pnewton"
+import csv
+rows = list(csv.DictReader(open("out/serial/steps.csv")))
+assert len(rows) == 4 and all(int(r["contact_active_pairs"]) > 0 for r in rows[1:]), rows
+assert float(rows[-1]["contact_min_distance"]) == one["contact"]["min_distance"], rows[-1]
 obj = Path("out/serial/colliders.obj").read_text()
 assert "o collider_0" in obj and obj.count("\nf ") == 1280, "colliders.obj: the sphere"
 PY
