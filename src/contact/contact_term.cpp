@@ -1,6 +1,8 @@
 // IPC contact on distributed vectors (contact_term.hpp).
 #include "mlshell/contact/contact_term.hpp"
 
+#include <petsc/private/petscimpl.h>  // PetscObjectStateGet
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -127,8 +129,17 @@ void ContactTerm::update_obstacle_boxes() {
 
 PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
   PetscFunctionBeginUser;
+  // The same state prepared again (an objective and then a Hessian at one iterate): nothing to
+  // do. A vector's id and state change with every write to it.
+  PetscObjectId id;
+  PetscObjectState state;
+  PetscCall(PetscObjectGetId((PetscObject)u, &id));
+  PetscCall(PetscObjectStateGet((PetscObject)u, &state));
+  if (!du && !swept_ && prepared_ && id == prepared_id_ && state == prepared_state_)
+    PetscFunctionReturn(0);
   const LogEventScope event(du ? "Contact:swept" : "Contact:proximity");
   swept_ = du != nullptr;
+  prepared_ = !swept_, prepared_id_ = id, prepared_state_ = state;
   std::vector<double> ul, dl;
   PetscCall(layout_.to_local(u, ul));
   if (swept_) PetscCall(layout_.to_local(du, dl));

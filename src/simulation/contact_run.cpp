@@ -53,11 +53,10 @@ void Simulation::check_contact_solver() const {
 
 PetscErrorCode Simulation::start_contact() {
   PetscFunctionBeginUser;
-  ContactTerm* contact = contact_;
-  PetscCall(contact->prepare(u_, nullptr));
+  PetscCall(contact_->prepare(u_, nullptr));
   double d;
-  PetscCall(contact->min_squared_distance(&d));
-  const double xi = contact->settings().barrier.thickness;
+  PetscCall(contact_->min_squared_distance(&d));
+  const double xi = contact_->settings().barrier.thickness;
   if (!(d > xi * xi)) {
     std::ostringstream message;
     message << contact_key(scene_, *contact_) << ": the shell starts " << std::setprecision(6)
@@ -66,7 +65,7 @@ PetscErrorCode Simulation::start_contact() {
             << "`thickness`";
     throw SceneError(message.str());
   }
-  const double reach = xi + contact->settings().barrier.gap;
+  const double reach = xi + contact_->settings().barrier.gap;
   if (d < reach * reach)  // a mesh finer than ξ + ĝ (self-contact) or a collider close by
     PetscCall(PetscPrintf(comm_,
                           "mlshell: warning: the contact barrier acts at the start: pairs %g m "
@@ -97,16 +96,15 @@ PetscErrorCode Simulation::contact_summary(Json* out) const {
   PetscFunctionBeginUser;
   *out = Json(nullptr);
   if (!contact_) PetscFunctionReturn(0);
-  ContactTerm* contact = contact_;
-  PetscCall(contact->prepare(u_, nullptr));
+  PetscCall(contact_->prepare(u_, nullptr));
   ContactStatistics s;
-  PetscCall(contact->statistics(&s));
-  const ContactSettings& c = contact->settings();
+  PetscCall(contact_->statistics(&s));
+  const ContactSettings& c = contact_->settings();
   *out = Json(Json::Object{
       {"thickness", Json(c.barrier.thickness)},
       {"gap", Json(c.barrier.gap)},
       {"self", Json(c.self_contact)},
-      {"colliders", Json(static_cast<long long>(contact->obstacles().size()))},
+      {"colliders", Json(static_cast<long long>(contact_->obstacles().size()))},
       {"stiffness", Json(s.stiffness)},
       {"stiffness_fixed", Json(c.stiffness > 0.0)},
       {"candidate_pairs", Json(static_cast<long long>(s.candidates))},

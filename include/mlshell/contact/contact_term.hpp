@@ -150,6 +150,10 @@ class ContactTerm final : public EnergyTerm {
   // The prepared state, on the compact surface of the vertices this rank knows.
   bool swept_ = false;
   bool finite_ = true;  ///< the prepared u (and du) are finite on every rank
+  /// The vector (id and state) of the last proximity prepare, which a repeat may skip.
+  bool prepared_ = false;
+  PetscObjectId prepared_id_ = 0;
+  PetscObjectState prepared_state_ = 0;
   std::vector<Eigen::Vector3d> x_, dx_;
   std::vector<int> vertex_id_, local_index_;  ///< compact → surface id, → local point (−1)
   std::vector<PetscInt> block_index_;         ///< compact → PETSc block (−1: obstacle)
