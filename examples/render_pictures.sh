@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Runs every example scene (examples/*.yaml, examples/triangle/*.yaml) at its default resolution
-# and steps on 2 ranks into out/pictures/<scene>/, and renders its last frame with ParaView
+# Runs every example scene (examples/*.yaml, examples/triangle/*.yaml, examples/contact/*.yaml)
+# at its default resolution and steps on 2 ranks into out/pictures/<scene>/, and renders its last frame with ParaView
 # (examples/render.py) to examples/pictures/<scene>.png; the drape also to the README's banner,
 # docs/pictures/drape.png. Needs build/mlshell and pvpython (Debian python3-paraview, xvfb);
 # examples/pvpython.sh runs pvpython under xvfb-run.
@@ -18,7 +18,7 @@ declare -A view=([plate]="--zscale 1000" [clamped_plate]="--zscale 1000"
                  [balloon]="--elev 20" [unstructured_drape]="--elev 12"
                  [strip_over_sphere]="--elev 20 --azim=-100 --size 800 450")
 mkdir -p examples/pictures docs/pictures out/pictures
-for scene in examples/*.yaml examples/triangle/*.yaml; do
+for scene in examples/*.yaml examples/triangle/*.yaml examples/contact/*.yaml; do
   name=$(basename "$scene" .yaml)
   [ $# -eq 0 ] || [[ " $* " == *" $name "* ]] || continue
   out=out/pictures/$name

@@ -11,7 +11,7 @@
 set -euo pipefail
 
 source "$(dirname "$0")/lib/common.bash" "$@"
-sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/triangle/strip_over_sphere.yaml" \
+sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/contact/strip_over_sphere.yaml" \
   >strip.yaml
 
 run() {  # run NAME RANKS [OPTIONS...]: the scene into out/NAME, exit 0 expected
@@ -23,9 +23,10 @@ run() {  # run NAME RANKS [OPTIONS...]: the scene into out/NAME, exit 0 expected
   [[ $rc -eq 0 ]] || die "$name: exit $rc: $(tail -5 "$name.log")"
 }
 
-echo "check: the strip over the sphere on 1 and 2 ranks, in one load step, and by tr"
+echo "check: the strip over the sphere on 1, 2 and 3 ranks, in one load step, and by tr"
 run serial 1
-run distributed 2
+run distributed 2 -log_view
+run three_ranks 3
 run one_step 1 -mlshell_steps 1 -mlshell_dt 1
 run trust_region 1 -tao_type tr
 $PY - <<'PY' || die "contact outputs"
@@ -49,11 +50,19 @@ def final(name):
     return [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
 
 one, two, step = summary("serial"), summary("distributed"), summary("one_step")
+three = summary("three_ranks")
 summary("trust_region")
 assert two["contact"]["halo_points"] > 0 and one["contact"]["halo_points"] == 0
+assert three["contact"]["halo_points"] > two["contact"]["halo_points"], (two, three)
 a, b, c = final("serial"), final("distributed"), final("one_step")
 # The same minimiser to the solver's tolerance (1e-7 N on forces of 1e-1 N: ~1e-9 m here).
 assert max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v)) < 1e-8, "1 vs 2 ranks"
+assert max(abs(p - q) for u, v in zip(a, final("three_ranks")) for p, q in zip(u, v)) < 1e-8, \
+    "1 vs 3 ranks"
+# -log_view lists the contact events of a contact scene (the check below: none without contact).
+log = open("distributed.log").read()
+for event in ("Contact:proximity", "Contact:ccd", "Effect:contact"):
+    assert f"\n{event} " in log, f"-log_view has no {event}"
 # In one step κ doubles once more than in four (adaptive κ follows the iterates), which moves
 # the resting state by a fraction of the gap (1 mm; 0.22 mm measured), not more.
 assert max(abs(p - q) for u, v in zip(a, c) for p, q in zip(u, v)) < 1e-3, "one load step"
@@ -65,6 +74,19 @@ assert len(rows) == 4 and all(int(r["contact_active_pairs"]) > 0 for r in rows[1
 assert float(rows[-1]["contact_min_distance"]) == one["contact"]["min_distance"], rows[-1]
 obj = Path("out/serial/colliders.obj").read_text()
 assert "o collider_0" in obj and obj.count("\nf ") == 1280, "colliders.obj: the sphere"
+PY
+
+echo "check: a scene without contact builds none of it: no contact events, summary or colliders"
+timeout 300 mpiexec --oversubscribe -n 2 "$MLSHELL" "$SRC/examples/triangle/balloon.yaml" \
+  -mlshell_quiet -mlshell_steps 1 -mlshell_output_dir out/no_contact -log_view >no_contact.log 2>&1 \
+  || die "balloon: $(tail -5 no_contact.log)"
+grep -q "^Effect:elastic " no_contact.log || die "balloon: no -log_view in no_contact.log"
+! grep -E "^(Contact:|Effect:contact|Audit)" no_contact.log || die "balloon: contact events"
+$PY - <<'PY' || die "balloon: contact outputs"
+import json, os
+s = json.load(open("out/no_contact/summary.json"))
+assert s["status"] == "complete" and "contact" not in s, sorted(s)
+assert not os.path.exists("out/no_contact/colliders.obj")
 PY
 
 echo "check: SNES newtonls's line search is cut to CCD: whatever it reaches, no frame intersects"
