@@ -289,7 +289,7 @@ struct ContactEffect {
   std::optional<double> stiffness;  ///< κ > 0, fixed; default adaptive (IPC)
 };
 
-/// A static obstacle for contact (needs a `contact` effect):
+/// An obstacle for contact (needs a `contact` effect), static or moved by `motion`:
 /// `collider: {sphere: {center: [x, y, z], radius: r, subdivisions: 3}}`,
 /// `collider: {plane: {point: [x, y, z], normal: [nx, ny, nz], size: s}}` (a square of side s),
 /// `collider: {box: {center: [x, y, z], size: [sx, sy, sz]}}` or `collider: {obj: path}`.
@@ -302,6 +302,8 @@ struct ColliderEffect {
   std::optional<double> side;      ///< plane: the square's side; default 4 shell diagonals
   Vec3 size{1, 1, 1};              ///< box edge lengths, > 0
   std::filesystem::path obj;       ///< obj: the resolved path of a triangle surface
+  /// A scripted rigid motion of the whole collider (its points X go to φ(X, t)); none: static.
+  std::optional<Motion> motion;
 };
 
 using Effect = std::variant<InertiaEffect, GravityEffect, SurfaceLoadEffect, LineLoadEffect,

@@ -43,6 +43,7 @@
 namespace mlshell {
 
 class ContactTerm;
+class ColliderMotion;
 
 struct SimulationOptions {
   bool evaluate_only = false;
@@ -182,8 +183,14 @@ class Simulation {
   /// Contact scenes at the first frame: the shell must start farther than the thickness ξ from
   /// itself and the colliders (else SceneError); writes colliders.obj.
   PetscErrorCode start_contact();
-  /// colliders.obj: the colliders, one object each (rank 0).
-  void write_colliders() const;
+  /// The colliders where they are now, one object each, into `file` (rank 0): colliders.obj
+  /// at the start, and colliders_NNNNNN.obj with every frame when they move.
+  void write_colliders(const std::string& file) const;
+  /// Scripted colliders (collider_motion.hpp; null when every collider is static).
+  std::unique_ptr<ColliderMotion> collider_motion_;
+  /// Contact scenes with moving colliders: the driver, at the places of `time`, given to the
+  /// time stepper.
+  void start_collider_motion(double time);
   /// The contact section of summary.json (collective; null without contact).
   PetscErrorCode contact_summary(Json* out) const;
   std::string audit_message_;  ///< of the last frame audited, if it intersects

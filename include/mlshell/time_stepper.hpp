@@ -12,7 +12,9 @@
 // augmented-Lagrangian multipliers (dirichlet with a tolerance) get an outer loop: once a solve
 // is in equilibrium, multipliers whose constraint is violated by more than its tolerance are
 // updated and the step is solved again (at most 50 times for implicit Euler; within the
-// proximal solves for quasistatics).
+// proximal solves for quasistatics). Kinematics (scripted colliders) move before every solve,
+// and a step is solved again until they have arrived (at most 100 solves for implicit Euler;
+// within the proximal solves for quasistatics).
 #pragma once
 
 #include <petscvec.h>
@@ -24,6 +26,16 @@
 
 namespace mlshell {
 
+/// What moves within a step besides the shell's unknowns: scripted colliders
+/// (collider_motion.hpp).
+class StepKinematics {
+ public:
+  virtual ~StepKinematics() = default;
+  /// Moves as far towards the places at `time` as is safe before a solve, and the shell (u)
+  /// along where it must; *reached: everything is there.
+  virtual PetscErrorCode advance(double time, Vec u, bool* reached) = 0;
+};
+
 class TimeStepper {
  public:
   virtual ~TimeStepper() = default;
@@ -32,6 +44,12 @@ class TimeStepper {
   /// From the state (u, v) of the last step to that at `time`, in place; the report covers all
   /// of the step's solves.
   virtual PetscErrorCode advance(double time, Vec u, Vec v, SolveReport& report) = 0;
+  /// Kinematics moved before every solve; a step is solved again until they have arrived
+  /// (not owned; null: none).
+  void set_kinematics(StepKinematics* k) { kinematics_ = k; }
+
+ protected:
+  StepKinematics* kinematics_ = nullptr;
 };
 
 class ImplicitEuler final : public TimeStepper {

@@ -61,8 +61,11 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
   num_shell_faces_ = shell.num_triangles();
   std::vector<std::array<int, 3>> faces(shell.triangles.begin(), shell.triangles.end());
   rest_.assign(shell.points.begin(), shell.points.end());
-  for (const TriangleMesh& o : obstacles_) {
+  for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+    const TriangleMesh& o = obstacles_[k];
     const int offset = static_cast<int>(rest_.size());
+    obstacle_of_.insert(obstacle_of_.end(), o.points.size(), static_cast<int>(k));
+    obstacle_first_.push_back(offset);
     rest_.insert(rest_.end(), o.points.begin(), o.points.end());
     for (const Triangle& t : o.triangles) faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   }
@@ -118,13 +121,105 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
   }
 }
 
+const Point3& ContactTerm::obstacle_point(int v) const {
+  const int k = obstacle_of_[v - num_shell_points_];
+  return obstacles_[k].points[v - obstacle_first_[k]];
+}
+
 void ContactTerm::update_obstacle_boxes() {
   obstacle_boxes_.clear();
   for (std::size_t f = num_shell_faces_; f < surface_.faces.size(); ++f) {
     Box b = empty_box();
-    for (int v : surface_.faces[f]) grow(b, rest_[v]);
+    for (int v : surface_.faces[f]) {
+      grow(b, obstacle_point(v));
+      if (!obstacle_dx_.empty()) grow(b, obstacle_point(v) + obstacle_dx_[v - num_shell_points_]);
+    }
     obstacle_boxes_.push_back(b);
   }
+}
+
+void ContactTerm::move_obstacles(const std::vector<std::vector<Point3>>& points) {
+  if (points.size() != obstacles_.size())
+    throw std::logic_error("contact: move_obstacles needs a place for every obstacle");
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (points[k].size() != obstacles_[k].points.size())
+      throw std::logic_error("contact: move_obstacles needs a place for every vertex");
+    obstacles_[k].points = points[k];
+  }
+  update_obstacle_boxes();
+  prepared_ = false;
+  ++revision_;
+}
+
+PetscErrorCode ContactTerm::obstacle_step_limit(Vec u, Vec du,
+                                                const std::vector<std::vector<Point3>>& points,
+                                                double* alpha) {
+  PetscFunctionBeginUser;
+  obstacle_dx_.clear();
+  for (std::size_t k = 0; k < obstacles_.size(); ++k)
+    for (std::size_t i = 0; i < obstacles_[k].points.size(); ++i)
+      obstacle_dx_.push_back(points.at(k).at(i) - obstacles_[k].points[i]);
+  update_obstacle_boxes();
+  PetscErrorCode ierr = prepare(u, du);
+  double mine = ierr ? 0.0 : max_step({}, {});
+  obstacle_dx_.clear();
+  update_obstacle_boxes();
+  prepared_ = false;
+  PetscCall(ierr);
+  PetscCallMPI(MPI_Allreduce(&mine, alpha, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactTerm::carry(Vec u, const std::vector<std::vector<Point3>>& points,
+                                  const std::vector<char>& moving,
+                                  const std::function<Point3(int, const Point3&)>& place,
+                                  Vec du) {
+  PetscFunctionBeginUser;
+  // The obstacles' move against the shell at rest (du = 0): the swept pairs.
+  PetscCall(VecZeroEntries(du));
+  obstacle_dx_.clear();
+  for (std::size_t k = 0; k < obstacles_.size(); ++k)
+    for (std::size_t i = 0; i < obstacles_[k].points.size(); ++i)
+      obstacle_dx_.push_back(points.at(k).at(i) - obstacles_[k].points[i]);
+  update_obstacle_boxes();
+  const PetscErrorCode ierr = prepare(u, du);
+  // Each shell vertex that a moving obstacle would reach at t (its time of impact) is pushed by
+  // the fraction 1 − t/2 of that obstacle's rigid motion, the largest over its pairs: it keeps
+  // ahead of the obstacle with half of the safe approach to spare.
+  std::vector<double> fraction(x_.size(), 0.0);
+  std::vector<int> pushed_by(x_.size(), -1);
+  for (const Pair& p : ierr || !finite_ ? std::vector<Pair>{} : pairs_) {
+    int k = -1;
+    for (int c : p.v)
+      if (vertex_id_[c] >= num_shell_points_) k = obstacle_of_[vertex_id_[c] - num_shell_points_];
+    if (k < 0 || !moving.at(k)) continue;
+    const Vector12 x0 = stencil(p, 0.0), dx = stencil(p, 1.0) - x0;
+    const CcdResult r =
+        p.edge_edge ? edge_edge_ccd(x0, dx, settings_.barrier.thickness, 1.0, settings_.ccd)
+                    : point_triangle_ccd(x0, dx, settings_.barrier.thickness, 1.0, settings_.ccd);
+    if (!r.may_collide) continue;
+    for (int c : p.v)
+      if (vertex_id_[c] < num_shell_points_ && 1.0 - 0.5 * r.toi > fraction[c])
+        fraction[c] = 1.0 - 0.5 * r.toi, pushed_by[c] = k;
+  }
+  obstacle_dx_.clear();
+  update_obstacle_boxes();
+  prepared_ = false;
+  PetscCall(ierr);
+  std::vector<PetscInt> rows;
+  std::vector<double> values;
+  for (std::size_t c = 0; c < x_.size(); ++c) {
+    if (pushed_by[c] < 0 || block_index_[c] < 0) continue;
+    const Eigen::Vector3d step = fraction[c] * (place(pushed_by[c], x_[c]) - x_[c]);
+    rows.push_back(block_index_[c]);
+    values.insert(values.end(), {step[0], step[1], step[2]});
+  }
+  if (!rows.empty())
+    PetscCall(VecSetValuesBlocked(du, static_cast<PetscInt>(rows.size()), rows.data(),
+                                  values.data(), INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(du));
+  PetscCall(VecAssemblyEnd(du));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
@@ -246,7 +341,8 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
     int l = -1;
     if (v >= num_shell_points_) {
       if (!near[v - num_shell_points_]) continue;
-      x = rest_[v];
+      x = obstacle_point(v);
+      if (swept_ && !obstacle_dx_.empty()) d = obstacle_dx_[v - num_shell_points_];
     } else if ((l = layout_.local_of(v)) >= 0) {
       x = position(l), d = motion(l);
     } else if (halo_of[v] >= 0) {

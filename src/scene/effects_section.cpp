@@ -179,11 +179,16 @@ Effect read_collider(const Field& params, const GeometrySpec& geometry, const fs
   params.check(geometry.triangles(), "colliders touch triangle-mesh shells",
                "geometry: {mesh: {...}}");
   constexpr std::string_view kShapes =
-      "{sphere: {center, radius}}, {plane: {point, normal}}, {box: {center, size}} or {obj: path}";
-  params.check(params.is_map() && params.entries().size() == 1, "a collider is one shape",
-               kShapes);
+      "{sphere: {center, radius}}, {plane: {point, normal}}, {box: {center, size}} or {obj: path}, "
+      "and optionally motion: {translate, rotate, over}";
+  params.check(params.is_map(), "a collider is one shape", kShapes);
   ColliderEffect c;
-  const auto entries = params.entries();
+  c.motion = optional_motion(params);
+  auto entries = params.entries();
+  entries.erase(std::remove_if(entries.begin(), entries.end(),
+                               [](const auto& e) { return e.first == "motion"; }),
+                entries.end());
+  params.check(entries.size() == 1, "a collider is one shape", kShapes);
   const auto& [shape, field] = entries.front();
   if (shape == "sphere") {
     field.expect_keys({"center", "radius", "subdivisions"});

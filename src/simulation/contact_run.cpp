@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "mlshell/contact/collider_motion.hpp"
 #include "mlshell/contact/contact_term.hpp"
 #include "mlshell/simulation.hpp"
 #include "simulation_output.hpp"
@@ -72,11 +73,25 @@ PetscErrorCode Simulation::start_contact() {
                           "apart are within thickness + gap = %g m, so the shell is pushed "
                           "even at rest; a smaller gap or thickness (or self: false) avoids it\n",
                           std::sqrt(d), reach));
-  if (rank_ == 0 && !contact_->obstacles().empty()) write_colliders();
+  if (rank_ == 0 && !contact_->obstacles().empty()) write_colliders("colliders.obj");
   PetscFunctionReturn(0);
 }
 
-void Simulation::write_colliders() const {
+void Simulation::start_collider_motion(double time) {
+  std::vector<PrescribedMotion> motions;
+  bool any = false;
+  for (const Effect& e : scene_.effects)
+    if (const auto* c = std::get_if<ColliderEffect>(&e)) {
+      motions.push_back(c->motion ? motion_function(c->motion) : PrescribedMotion());
+      any = any || c->motion.has_value();
+    }
+  if (!any) return;
+  collider_motion_ = std::make_unique<ColliderMotion>(*contact_, std::move(motions), u_);
+  collider_motion_->place_at(time);
+  stepper_->set_kinematics(collider_motion_.get());
+}
+
+void Simulation::write_colliders(const std::string& file) const {
   std::ostringstream obj;
   obj << "# mlshell colliders of " << scene_.name << ", one object per collider\n"
       << std::setprecision(17);
@@ -89,7 +104,7 @@ void Simulation::write_colliders() const {
       obj << "f " << t[0] + offset << ' ' << t[1] + offset << ' ' << t[2] + offset << '\n';
     offset += m.num_points();
   }
-  write_file_atomic(output_->dir / "colliders.obj", obj.str());
+  write_file_atomic(output_->dir / file, obj.str());
 }
 
 PetscErrorCode Simulation::contact_summary(Json* out) const {
@@ -113,6 +128,10 @@ PetscErrorCode Simulation::contact_summary(Json* out) const {
       {"halo_points", Json(static_cast<long long>(s.halo_points))},
       {"pattern_rebuilds", Json(static_cast<long long>(s.pattern_rebuilds))},
       {"broad_phase_builds", Json(static_cast<long long>(s.list_builds))}});
+  if (collider_motion_) {  // scripted colliders: their moves, and those CCD cut short
+    out->set("collider_moves", Json(static_cast<long long>(collider_motion_->moves())));
+    out->set("collider_moves_cut", Json(static_cast<long long>(collider_motion_->cut_moves())));
+  }
   PetscFunctionReturn(0);
 }
 

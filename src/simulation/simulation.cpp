@@ -14,6 +14,7 @@
 #include "mlshell/output_files.hpp"
 #include "mlshell/step_failure.hpp"
 #include "mlshell/subdivision/level_hierarchy.hpp"
+#include "mlshell/contact/collider_motion.hpp"
 #include "mlshell/contact/contact_term.hpp"
 #include "mlshell/triangle/triangle_effect_builder.hpp"
 #include "mlshell/triangle/triangle_levels.hpp"
@@ -540,6 +541,7 @@ PetscErrorCode Simulation::run(int* status) {
         if (cols[j] == cols[i]) cols[j] += "_" + std::to_string(j);
     output_->csv = std::make_unique<CsvTable>(output_->dir / "steps.csv", cols);
   }
+  if (contact_) start_collider_motion(first_step_ * scene_.time.dt);
   if (options_.audit_intersections) {  // the input first: an intersecting one is bad input
     long pairs;
     std::string message;

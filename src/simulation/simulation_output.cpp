@@ -75,6 +75,11 @@ PetscErrorCode Simulation::write_series_frame(FrameSeries& series, Vec u, int n,
     long pairs;
     PetscCall(audit_frame(series, u, n, t, &pairs, &audit_message_));
   }
+  if (collider_motion_ && series.disc == disc_ && rank_ == 0) {  // where the colliders are now
+    char name[64];
+    std::snprintf(name, sizeof name, "colliders_%06d.obj", n);
+    write_colliders(name);
+  }
   const auto& formats = scene_.output.formats;
   auto has = [&](const char* f) {
     return std::find(formats.begin(), formats.end(), f) != formats.end();

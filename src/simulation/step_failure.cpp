@@ -82,7 +82,8 @@ std::string scene_causes(const Scene& scene, const SceneTraits& t) {
     std::string names;
     for (const auto& n : t.loads) names += (names.empty() ? "" : ", ") + n;
     text += "  - nothing holds the shell against its loads (" + names +
-            "): add a dirichlet or clamp effect, or inertia (integrator: implicit_euler)\n";
+            "): add a dirichlet or clamp effect, or the `inertia` effect (with integrator: "
+            "implicit_euler)\n";
   }
   if (scene.material.preset == "denim-table1")
     text +=

@@ -9,6 +9,18 @@ namespace {
 constexpr double kLimitingFactor = 100.0;
 /// Augmented-Lagrangian multiplier updates per implicit Euler step before giving up.
 constexpr int kMaxMultiplierUpdates = 50;
+/// Solves per implicit Euler step while kinematics have not arrived, before giving up.
+constexpr int kMaxKinematicSolves = 100;
+
+/// `next` after `before` in one step: the totals of both, the rest of `next`.
+SolveReport after(const SolveReport& before, SolveReport next) {
+  next.iterations += before.iterations;
+  next.linear_iterations += before.linear_iterations;
+  next.rmtr += before.rmtr;
+  next.solves = before.solves + 1;
+  next.multiplier_updates = before.multiplier_updates;
+  return next;
+}
 }  // namespace
 
 ImplicitEuler::ImplicitEuler(MultilevelProblem& levels, StepSolver& solver, double dt)
@@ -25,8 +37,22 @@ PetscErrorCode ImplicitEuler::advance(double time, Vec u, Vec v, SolveReport& re
   // Every level to time t, with the inertia predictor û = u_n + dt v_n (projected on the
   // coarse levels).
   PetscCall(levels_.synchronize(time, u, v));
+  bool arrived = true;
+  if (kinematics_) PetscCall(kinematics_->advance(time, u, &arrived));
   PetscCall(solver_.solve(u, report));
   report.solves = 1;
+  // Kinematics that could not arrive before the solve move on after it (the predictor û stays).
+  while (report.converged && !arrived) {
+    if (report.solves == kMaxKinematicSolves) {
+      report.converged = false;
+      report.reason = "DIVERGED_COLLIDER_MOTION";
+      break;
+    }
+    PetscCall(kinematics_->advance(time, u, &arrived));
+    SolveReport again;
+    PetscCall(solver_.solve(u, again));
+    report = after(report, again);
+  }
   // An augmented Lagrangian tightens its constraints by re-solving the same step.
   LevelProblem& finest = levels_.level(levels_.num_levels() - 1);
   for (bool met = false; report.converged;) {
@@ -39,12 +65,8 @@ PetscErrorCode ImplicitEuler::advance(double time, Vec u, Vec v, SolveReport& re
     }
     SolveReport again;
     PetscCall(solver_.solve(u, again));
-    again.iterations += report.iterations;
-    again.linear_iterations += report.linear_iterations;
-    again.rmtr += report.rmtr;
-    again.solves = report.solves + 1;
-    again.multiplier_updates = report.multiplier_updates + 1;
-    report = again;
+    report = after(report, again);
+    ++report.multiplier_updates;
   }
   // v_{n+1} = (u_{n+1} − u_n) / dt
   PetscCall(VecWAXPY(v, -1.0, u_prev_, u));
@@ -72,9 +94,11 @@ PetscErrorCode Quasistatic::advance(double time, Vec u, Vec v, SolveReport& repo
   LevelProblem& finest = levels_.level(levels_.num_levels() - 1);
   SolveReport total;
   PetscReal energy_gradient = PETSC_INFINITY;
-  bool limiting = false;
+  bool limiting = false, arrived = true;
   for (int k = 0; k < max_solves_; ++k) {
-    // The proximal centre x^k is the current state, on every level.
+    // Kinematics first (they may carry the shell), then the proximal centre x^k is the current
+    // state, on every level.
+    if (kinematics_) PetscCall(kinematics_->advance(time, u, &arrived));
     PetscCall(levels_.synchronize(time, u, zero_));
     SolveReport solve;
     PetscCall(solver_.solve(u, solve));
@@ -98,6 +122,10 @@ PetscErrorCode Quasistatic::advance(double time, Vec u, Vec v, SolveReport& repo
       total.energy_bound = solve.energy_bound;
     }
     if (!solve.converged) break;
+    if (!arrived) {  // not in its final place yet: solve again after the next move
+      energy_gradient = PETSC_INFINITY;
+      continue;
+    }
     // At the round-off floor: done if ‖∇E‖ is there too; a solve that could not move at all
     // ends the step (another one would start from the same point).
     limiting = solve.reason == "CONVERGED_LIMITING_ACCURACY" &&
@@ -116,8 +144,9 @@ PetscErrorCode Quasistatic::advance(double time, Vec u, Vec v, SolveReport& repo
   }
   if (total.converged && !(energy_gradient <= total.gradient_tolerance) && !limiting) {
     total.converged = false;
-    total.reason = total.solves < max_solves_ ? "DIVERGED_QUASISTATIC_ROUNDOFF"
-                                              : "DIVERGED_QUASISTATIC_MAX_SOLVES";
+    total.reason = !arrived                   ? "DIVERGED_COLLIDER_MOTION"
+                   : total.solves < max_solves_ ? "DIVERGED_QUASISTATIC_ROUNDOFF"
+                                                 : "DIVERGED_QUASISTATIC_MAX_SOLVES";
   }
   report = total;
   PetscCall(VecZeroEntries(v));

@@ -33,6 +33,11 @@
 // CCD is max_step: the swept candidates of u → u + du, each by additive CCD (additive_ccd.hpp),
 // the smallest time of impact over all ranks.
 //
+// Scripted colliders move between solves, never within one: obstacle_step_limit is CCD over
+// the obstacles' straight move to new places together with a shell step, move_obstacles puts
+// them there, and carry gives the step that takes the shell vertices near a moving obstacle
+// along with it (collider_motion.hpp drives them).
+//
 // Stiffness κ: the scene's, or adaptive. IPC's κ_min from the lumped masses (adaptive_stiffness.hpp)
 // is the scale of inertia and far too soft for quasistatics (a sheet resting on a sphere sank
 // to the thickness ξ with it); the start is instead the κ at which one pair at half the gap,
@@ -47,6 +52,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -107,7 +113,26 @@ class ContactTerm final : public EnergyTerm {
   /// The smallest squared pair distance among the prepared candidates, over all ranks
   /// (collective); +∞ without candidates.
   PetscErrorCode min_squared_distance(double* d) const;
+  /// The obstacles where they are now (their rest places until move_obstacles).
   const std::vector<TriangleMesh>& obstacles() const { return obstacles_; }
+  /// Puts obstacle k's vertices at points[k] (the same on every rank; each as many as the
+  /// obstacle has). The next prepare finds the pairs afresh; revision() changes.
+  void move_obstacles(const std::vector<std::vector<Point3>>& points);
+  /// The largest fraction α ∈ [0, 1] of the joint straight move of the shell, u → u + du, and
+  /// of the obstacles, to `points`, that keeps every pair apart by more than ξ (additive CCD,
+  /// over all ranks; collective). Leaves the term unprepared.
+  PetscErrorCode obstacle_step_limit(Vec u, Vec du,
+                                     const std::vector<std::vector<Point3>>& points,
+                                     double* alpha);
+  /// The step du that pushes the shell ahead of the obstacles flagged in `moving` as they move
+  /// straight to `points` (collective): a shell vertex that obstacle k would reach at its time
+  /// of impact t (additive CCD of the obstacles' move against the shell at rest) gets the
+  /// fraction 1 − t/2 of place(k, x) − x, the rigid motion that takes the obstacle's current
+  /// place to its new one (the largest fraction over its pairs); every other vertex 0. Leaves
+  /// the term unprepared.
+  PetscErrorCode carry(Vec u, const std::vector<std::vector<Point3>>& points,
+                       const std::vector<char>& moving,
+                       const std::function<Point3(int, const Point3&)>& place, Vec du);
   const ContactSettings& settings() const { return settings_; }
   double stiffness() const { return kappa_; }
 
@@ -134,7 +159,14 @@ class ContactTerm final : public EnergyTerm {
   std::vector<int> own_vertices_, own_edges_, own_faces_;  ///< this rank's primitives
   std::vector<int> own_box_points_;        ///< local indices of their vertices
   std::vector<Eigen::Matrix<double, 6, 1>> obstacle_boxes_;  ///< each obstacle face's (lo, hi)
+  /// Each obstacle vertex's move in a swept prepare (obstacle_step_limit); empty: none.
+  std::vector<Eigen::Vector3d> obstacle_dx_;
+  std::vector<int> obstacle_of_;     ///< the obstacle of each obstacle vertex (surface id − shell's)
+  std::vector<int> obstacle_first_;  ///< each obstacle's first surface id
+  /// Each obstacle face's box, over its move when obstacle_dx_ is set.
   void update_obstacle_boxes();
+  /// The current place of surface vertex v ≥ num_shell_points_ (an obstacle's).
+  const Point3& obstacle_point(int v) const;
   /// The surface of the vertices with compact[v] ≥ 0 (num_vertices of them): the edges and faces
   /// whose vertices all are, and their global ids.
   ContactSurface known_surface(const std::vector<int>& compact, int num_vertices,
