@@ -1,6 +1,8 @@
 """Renders one frame of an mlshell result folder with ParaView: the deformed surface (the XDMF
 series' geometry) coloured by the displacement magnitude, smooth-shaded, seen from above at an
-angle, with a colour bar, and the colliders of a contact scene (colliders.obj) in grey; --zscale exaggerates z (the out-of-plane wrinkles of a stiff plate),
+angle, with a colour bar, and the colliders of a contact scene (colliders.obj, or the frame's
+colliders_NNNNNN.obj when they move) in grey; --zscale exaggerates z (the out-of-plane wrinkles
+of a stiff plate),
 --elev/--azim turn the view.
 
   xvfb-run -a pvpython examples/render.py out/drape                  -> out/drape/final.png
@@ -84,8 +86,11 @@ def main():
     lut.ApplyPreset("Viridis (matplotlib)", True)
     lut.RescaleTransferFunction(0.0, max(umax * factor, 1e-30))
     shown.Specular, shown.SpecularPower = 0.25, 40.0
-    # Contact scenes write their colliders once: grey, beside the shell.
-    colliders = folder / "colliders.obj"
+    # Contact scenes write their colliders (grey, beside the shell): once, or with every frame
+    # when they move.
+    colliders = folder / f"colliders_{step:06d}.obj"
+    if not colliders.exists():
+        colliders = folder / "colliders.obj"
     if colliders.exists():
         obstacle = pv.Transform(Input=pv.OpenDataFile(str(colliders)))
         obstacle.Transform.Scale = [1.0, 1.0, a.zscale]

@@ -206,19 +206,65 @@ PetscErrorCode ContactTerm::carry(Vec u, const std::vector<std::vector<Point3>>&
   update_obstacle_boxes();
   prepared_ = false;
   PetscCall(ierr);
-  std::vector<PetscInt> rows;
-  std::vector<double> values;
+  // Each pushed vertex goes to its owner as (PETSc block, fraction, obstacle), and the owner
+  // keeps the largest fraction (the lowest obstacle among equals): the same push on any number
+  // of ranks, whichever ranks own the pairs.
+  const int size = layout_.size();
+  std::vector<int> first(size + 1);
+  const int owned_first = layout_.first_owned(), owned = layout_.num_owned_points();
+  PetscCallMPI(MPI_Allgather(&owned_first, 1, MPI_INT, first.data(), 1, MPI_INT, layout_.comm()));
+  PetscCallMPI(MPI_Allreduce(&owned, &first[size], 1, MPI_INT, MPI_SUM, layout_.comm()));
+  std::vector<std::vector<double>> send(size);
   for (std::size_t c = 0; c < x_.size(); ++c) {
     if (pushed_by[c] < 0 || block_index_[c] < 0) continue;
-    const Eigen::Vector3d step = fraction[c] * (place(pushed_by[c], x_[c]) - x_[c]);
-    rows.push_back(block_index_[c]);
-    values.insert(values.end(), {step[0], step[1], step[2]});
+    const int b = static_cast<int>(block_index_[c]);
+    const int r = static_cast<int>(std::upper_bound(first.begin(), first.end() - 1, b) - first.begin()) - 1;
+    send[r].insert(send[r].end(), {double(b), fraction[c], double(pushed_by[c])});
   }
-  if (!rows.empty())
-    PetscCall(VecSetValuesBlocked(du, static_cast<PetscInt>(rows.size()), rows.data(),
-                                  values.data(), INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(du));
-  PetscCall(VecAssemblyEnd(du));
+  std::vector<double> received;
+  PetscCall(exchange(send, received));
+  std::vector<double> best(owned, 0.0);
+  std::vector<int> by(owned, -1);
+  for (std::size_t i = 0; i < received.size(); i += 3) {
+    const int l = static_cast<int>(received[i]) - owned_first, k = static_cast<int>(received[i + 2]);
+    const double f = received[i + 1];
+    if (f > best[l] || (f == best[l] && by[l] >= 0 && k < by[l])) best[l] = f, by[l] = k;
+  }
+  std::vector<double> ul;
+  PetscCall(layout_.to_local(u, ul));
+  PetscScalar* d;
+  PetscCall(VecGetArray(du, &d));
+  for (int l = 0; l < owned; ++l) {
+    if (by[l] < 0) continue;
+    const Eigen::Vector3d x =
+        rest_[layout_.local_points()[l]] + Eigen::Vector3d(ul[3 * l], ul[3 * l + 1], ul[3 * l + 2]);
+    const Eigen::Vector3d step = best[l] * (place(by[l], x) - x);
+    for (int k = 0; k < 3; ++k) d[3 * l + k] = step[k];
+  }
+  PetscCall(VecRestoreArray(du, &d));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactTerm::exchange(const std::vector<std::vector<double>>& send,
+                                     std::vector<double>& received) const {
+  PetscFunctionBeginUser;
+  const int size = layout_.size();
+  std::vector<int> send_counts(size), recv_counts(size), send_displs(size, 0), recv_displs(size, 0);
+  for (int r = 0; r < size; ++r) send_counts[r] = static_cast<int>(send[r].size());
+  PetscCallMPI(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT,
+                            layout_.comm()));
+  std::vector<double> flat;
+  for (int r = 0; r < size; ++r) {
+    if (r > 0) {
+      send_displs[r] = send_displs[r - 1] + send_counts[r - 1];
+      recv_displs[r] = recv_displs[r - 1] + recv_counts[r - 1];
+    }
+    flat.insert(flat.end(), send[r].begin(), send[r].end());
+  }
+  received.resize(recv_displs[size - 1] + recv_counts[size - 1]);
+  PetscCallMPI(MPI_Alltoallv(flat.data(), send_counts.data(), send_displs.data(), MPI_DOUBLE,
+                             received.data(), recv_counts.data(), recv_displs.data(), MPI_DOUBLE,
+                             layout_.comm()));
   PetscFunctionReturn(0);
 }
 
@@ -306,23 +352,7 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
       for (int e : own_edges_) offer(surface_.edges[e].data(), 2);
       for (int f : own_faces_) offer(surface_.faces[f].data(), 3);
     }
-    std::vector<int> send_counts(size), recv_counts(size), send_displs(size, 0),
-        recv_displs(size, 0);
-    for (int r = 0; r < size; ++r) send_counts[r] = static_cast<int>(send[r].size());
-    PetscCallMPI(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT,
-                              layout_.comm()));
-    std::vector<double> flat;
-    for (int r = 0; r < size; ++r) {
-      if (r > 0) {
-        send_displs[r] = send_displs[r - 1] + send_counts[r - 1];
-        recv_displs[r] = recv_displs[r - 1] + recv_counts[r - 1];
-      }
-      flat.insert(flat.end(), send[r].begin(), send[r].end());
-    }
-    received.resize(recv_displs[size - 1] + recv_counts[size - 1]);
-    PetscCallMPI(MPI_Alltoallv(flat.data(), send_counts.data(), send_displs.data(), MPI_DOUBLE,
-                               received.data(), recv_counts.data(), recv_displs.data(), MPI_DOUBLE,
-                               layout_.comm()));
+    PetscCall(exchange(send, received));
   }
 
   // The compact surface: known shell vertices in natural order, then the vertices of the

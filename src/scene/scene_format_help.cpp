@@ -67,7 +67,7 @@ effects:                     optional list of names or {name: params}; only thos
   - contact: {thickness: t, gap: g, self: bool, stiffness: k}   triangle meshes: IPC barrier,
                              at most once (docs/contact.md; defaults: the shell's, 1e-3 L, true)
   - collider: {sphere: {center: c, radius: r, subdivisions: n}, plane: {point: p, normal: n,
-               side: s}, box: {center: c, size: [sx, sy, sz]}, obj: path}   one shape each
+               side: s}, box: {center: c, size: [sx, sy, sz]}, obj: path, motion: MOTION}
     ramp: false (default) or true: the load grows linearly from 0 to full over the steps.
     components: non-empty subset of x, y, z, no repeats (default all three).
     sigma: > 0 (default 5): penalty beta = (Y tau / Y tau_denim) (1 m / L) (h / L)^-sigma for the

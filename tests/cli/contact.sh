@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Contact end to end (docs/contact.md): the strip pulled over a sphere (examples/triangle/
+# Contact end to end (docs/contact.md): the strip pulled over a sphere (examples/contact/
 # strip_over_sphere.yaml) on 1 and 2 ranks ends in the same state with no intersecting frame,
 # its summary reports the contact and the audit, and colliders.obj holds the sphere; in one load
 # step instead of four (a 0.3 m pull through the sphere's place, which only CCD's step limit
 # keeps out) and with the trust region instead of projected Newton it ends in the same state; a
 # strip folded onto itself stays apart by self-contact on 2 ranks, and without self-contact the
-# audit stops it (exit 5); and bad contact input exits 2 naming the file and key.
+# audit stops it (exit 5); a sphere moving up into the held strip pushes it up on 1 and 2
+# ranks alike, and pressing it into a plane above stops the run (the sphere cannot arrive); and
+# bad contact input exits 2 naming the file and key.
 #
 # usage: bash contact.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -139,6 +141,78 @@ grep -q "^mlshell: frame [0-9]* (t = .*) intersects itself: [0-9]* pair(s) of tr
   fold_apart.log || die "fold without self-contact: $(tail -3 fold_apart.log)"
 grep -q '"status": "intersection"' out/fold_apart/summary.json || die "fold: status"
 
+echo "check: a sphere moving up into the strip pushes it 0.25 m up, on 1 and 2 ranks alike"
+# The strip's ends held, the sphere (collider motion) rising 0.3 m from below in four steps:
+# between solves it moves as far as CCD allows, with the strip's vertices in its way pushed
+# ahead of it, and every step is solved until it has arrived.
+cat >push.yaml <<YAML
+geometry:
+  mesh: {generator: rectangle, size: [1.0, 0.2], faces: [40, 8]}
+material: {model: neo-hookean, youngs_modulus: 9.0e6, poisson_ratio: 0.3, thickness: 0.00066, volume_density: 606}
+effects:
+  - gravity: [0, 0, -9.81]
+  - dirichlet: {where: boundary(left)}
+  - dirichlet: {where: boundary(right)}
+  - contact
+  - collider:
+      sphere: {center: [0.5, 0.102, -0.15], radius: 0.1, subdivisions: 3}
+      motion: {translate: [0, 0, 0.3], over: [0, 1]}
+time: {dt: 0.25, steps: 4, integrator: quasistatic, proximal_step: 1.0}
+probes:
+  middle: {at: [0.5, 0.1, 0]}
+solver: {options_file: $SRC/petsc-options/projected-newton.yaml}
+output: {dir: out/push, formats: [obj]}
+YAML
+for ranks in 1 2; do
+  rc=0
+  timeout 300 mpiexec --oversubscribe -n $ranks "$MLSHELL" push.yaml -mlshell_quiet \
+    -mlshell_output_dir "out/push$ranks" >"push$ranks.log" 2>&1 || rc=$?
+  [[ $rc -eq 0 ]] || die "push on $ranks rank(s): exit $rc: $(tail -5 "push$ranks.log")"
+done
+$PY - <<'PY' || die "push: outputs"
+import json
+from pathlib import Path
+
+def vertices(path):
+    return [tuple(map(float, l.split()[1:4])) for l in Path(path).read_text().splitlines()
+            if l.startswith("v ")]
+
+for ranks in (1, 2):
+    s = json.load(open(f"out/push{ranks}/summary.json"))
+    assert s["status"] == "complete" and s["solver"]["converged"], s["status"]
+    assert s["intersection_audit"] == {"frames": 5, "intersecting_pairs": 0}, s["intersection_audit"]
+    c = s["contact"]
+    # One move a step: the strip's vertices in the way are pushed ahead (carry), so CCD never
+    # cuts a move short (without the push it cut 46 of 50).
+    assert c["collider_moves"] == 4 and c["collider_moves_cut"] == 0 and c["active_pairs"] > 0, c
+    # The sphere's top ends at z = 0.25; the strip's middle lies on it (its coarse triangles
+    # span the sphere's by a few mm), not below it.
+    top = max(z for _, _, z in vertices(f"out/push{ranks}/colliders_000004.obj"))
+    assert abs(top - 0.25) < 1e-12, top
+    assert max(z for _, _, z in vertices(f"out/push{ranks}/colliders_000000.obj")) < -0.0499
+    z = s["probes"]["middle"]["displacement"][2]
+    assert 0.25 + c["thickness"] < z < 0.26, z
+a, b = vertices("out/push1/frame_000004.obj"), vertices("out/push2/frame_000004.obj")
+assert max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v)) < 1e-8, "1 vs 2 ranks"
+PY
+
+echo "check: the sphere pressing the strip into a plane above cannot arrive: exit 3, no intersection"
+sed 's/^time: {dt: 0.25, steps: 4,/time: {dt: 0.25, steps: 3, max_proximal_solves: 8,/' push.yaml |
+  awk '/^  - contact/ { print; print "  - collider: {plane: {point: [0, 0, 0.15], normal: [0, 0, -1]}}"; next } { print }' \
+  >pinch.yaml
+grep -q "max_proximal_solves: 8" pinch.yaml || die "pinch.yaml: $(cat pinch.yaml)"
+rc=0
+timeout 300 "$MLSHELL" pinch.yaml -mlshell_quiet -mlshell_output_dir out/pinch >pinch.log 2>&1 || rc=$?
+[[ $rc -eq 3 ]] || die "pinch: exit $rc, expected 3: $(tail -3 pinch.log)"
+$PY - <<'PY' || die "pinch: summary"
+import json
+s = json.load(open("out/pinch/summary.json"))
+assert s["status"] == "solver_failed", s["status"]
+assert s["solver"]["reason"] == "DIVERGED_COLLIDER_MOTION", s["solver"]
+assert s["intersection_audit"]["intersecting_pairs"] == 0, s["intersection_audit"]
+assert s["contact"]["colliders"] == 2 and s["contact"]["collider_moves_cut"] > 0, s["contact"]
+PY
+
 echo "check: bad contact input exits 2 naming the file and key"
 bad() {  # bad NAME PATTERN OPTIONS... < scene: exit 2 and PATTERN in the message
   local name=$1 pattern=$2
@@ -177,6 +251,12 @@ strip_with "  - contact
   - collider: {sphere: {center: [0.5, 0.1, -0.2], radius: 0.1}}" |
   bad damping "damping.yaml: effects\[3\].contact: -snes_type newtonls with -snes_linesearch_type basic (damping 1.5.*) may step beyond" \
   -mlshell_step_solver snes -snes_linesearch_type basic -snes_linesearch_damping 1.5
+strip_with "  - contact
+  - collider: {sphere: {center: [0.5, 0.1, -0.2], radius: 0.1}, motion: {translate: [0, 0, 1]}}" |
+  bad motion "motion.yaml:[0-9]*: effects\[4\].collider.motion.*over"
+strip_with "  - contact
+  - collider: {sphere: {center: [0.5, 0.1, -0.2], radius: 0.1}, box: {center: [0, 0, 0], size: [1, 1, 1]}}" |
+  bad two_shapes "two_shapes.yaml:[0-9]*: effects\[4\].collider.*a collider is one shape"
 cat <<'YAML' | bad cloth "cloth.yaml:[0-9]*: effects\[0\].contact.*triangle-mesh shells"
 geometry: {cage: {generator: rectangle, size: [1, 1], faces: [4, 4]}, refine: 1}
 material: {model: clyde-orthotropic, preset: denim, thickness: 0.66e-3, density: 0.4}

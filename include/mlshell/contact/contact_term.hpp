@@ -165,6 +165,9 @@ class ContactTerm final : public EnergyTerm {
   std::vector<int> obstacle_first_;  ///< each obstacle's first surface id
   /// Each obstacle face's box, over its move when obstacle_dx_ is set.
   void update_obstacle_boxes();
+  /// send[r] to rank r, all received in rank order (collective).
+  PetscErrorCode exchange(const std::vector<std::vector<double>>& send,
+                          std::vector<double>& received) const;
   /// The current place of surface vertex v ≥ num_shell_points_ (an obstacle's).
   const Point3& obstacle_point(int v) const;
   /// The surface of the vertices with compact[v] ≥ 0 (num_vertices of them): the edges and faces

@@ -165,3 +165,68 @@ TEST(ContactTerm, SelfContactOffLeavesNoShellPairs) {
     VecDestroy(&u);
   }
 }
+
+// Moving obstacles (collider_motion.hpp's pieces): the plane 5 cm below the sheet raised 10 cm
+// through it is cut by CCD short of the thickness; the carry step pushes the sheet ahead of it
+// (the plane's vertical motion, by the fraction 1 − t/2 of a time of impact t ≤ 0.4, so at
+// least 80 % of it), and the joint move is then safe; a plane lowered away pushes nothing; and
+// the moved plane is where the energy sees it.
+TEST(ContactTerm, ObstaclesMoveOnlyAsFarAsCcdAllowsAndPushTheShellAhead) {
+  const Scene scene = triangle_scene("contact_moving", contact_scene(false));
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  auto* contact = tp.problem->find_term<ContactTerm>();
+  Vec u, du;
+  tp.layout().create_vector(&u);
+  VecDuplicate(u, &du);
+  VecZeroEntries(u);
+  VecZeroEntries(du);
+  auto shifted = [&](double dz) {
+    std::vector<std::vector<Point3>> points;
+    for (const TriangleMesh& o : contact->obstacles()) {
+      points.push_back(o.points);
+      for (Point3& p : points.back()) p[2] += dz;
+    }
+    return points;
+  };
+  const auto up = shifted(0.1);
+  double alpha;
+  contact->obstacle_step_limit(u, du, up, &alpha);
+  EXPECT_GT(alpha, 0.05);  // the gap closes to the thickness at α = 0.4
+  EXPECT_LT(alpha, 0.4);
+  const std::vector<char> moving{1};
+  const auto rise = [](double dz) {
+    return [dz](int, const Point3& x) { return Point3(x + Point3(0, 0, dz)); };
+  };
+  contact->carry(u, up, moving, rise(0.1), du);
+  PetscInt n;
+  VecGetLocalSize(du, &n);
+  const PetscScalar* d;
+  VecGetArrayRead(du, &d);
+  for (PetscInt i = 0; i < n; i += 3) {  // every vertex is over the plane
+    EXPECT_EQ(d[i], 0.0);
+    EXPECT_EQ(d[i + 1], 0.0);
+    EXPECT_GE(d[i + 2], 0.08 - 1e-12);
+    EXPECT_LE(d[i + 2], 0.1);
+  }
+  VecRestoreArrayRead(du, &d);
+  contact->obstacle_step_limit(u, du, up, &alpha);
+  EXPECT_EQ(alpha, 1.0);
+  // Lowered away: nothing to push.
+  contact->carry(u, shifted(-0.1), moving, rise(-0.1), du);
+  PetscReal norm;
+  VecNorm(du, NORM_INFINITY, &norm);
+  EXPECT_EQ(norm, 0.0);
+  // Moved 4.5 cm up, the plane is 5 mm below the sheet: inside the thickness, +∞ energy.
+  contact->move_obstacles(shifted(0.045));
+  double f;
+  tp.problem->objective(u, &f, nullptr);
+  EXPECT_EQ(f, PETSC_INFINITY);
+  contact->move_obstacles(shifted(0.0));
+  tp.problem->objective(u, &f, nullptr);
+  EXPECT_EQ(f, PETSC_INFINITY) << "still there";
+  contact->move_obstacles(shifted(-0.045));
+  tp.problem->objective(u, &f, nullptr);
+  EXPECT_TRUE(std::isfinite(f));
+  VecDestroy(&u);
+  VecDestroy(&du);
+}
