@@ -6,8 +6,9 @@
 # keeps out) and with the trust region instead of projected Newton it ends in the same state; a
 # strip folded onto itself stays apart by self-contact on 2 ranks, and without self-contact the
 # audit stops it (exit 5); a sphere moving up into the held strip pushes it up on 1 and 2
-# ranks alike, and pressing it into a plane above stops the run (the sphere cannot arrive); and
-# bad contact input exits 2 naming the file and key.
+# ranks alike, and pressing it into a plane above stops the run (the sphere cannot arrive); the
+# other contact examples run their first two steps; and bad contact input exits 2 naming the
+# file and key.
 #
 # usage: bash contact.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -142,27 +143,10 @@ grep -q "^mlshell: frame [0-9]* (t = .*) intersects itself: [0-9]* pair(s) of tr
 grep -q '"status": "intersection"' out/fold_apart/summary.json || die "fold: status"
 
 echo "check: a sphere moving up into the strip pushes it 0.25 m up, on 1 and 2 ranks alike"
-# The strip's ends held, the sphere (collider motion) rising 0.3 m from below in four steps:
-# between solves it moves as far as CCD allows, with the strip's vertices in its way pushed
-# ahead of it, and every step is solved until it has arrived.
-cat >push.yaml <<YAML
-geometry:
-  mesh: {generator: rectangle, size: [1.0, 0.2], faces: [40, 8]}
-material: {model: neo-hookean, youngs_modulus: 9.0e6, poisson_ratio: 0.3, thickness: 0.00066, volume_density: 606}
-effects:
-  - gravity: [0, 0, -9.81]
-  - dirichlet: {where: boundary(left)}
-  - dirichlet: {where: boundary(right)}
-  - contact
-  - collider:
-      sphere: {center: [0.5, 0.102, -0.15], radius: 0.1, subdivisions: 3}
-      motion: {translate: [0, 0, 0.3], over: [0, 1]}
-time: {dt: 0.25, steps: 4, integrator: quasistatic, proximal_step: 1.0}
-probes:
-  middle: {at: [0.5, 0.1, 0]}
-solver: {options_file: $SRC/petsc-options/projected-newton.yaml}
-output: {dir: out/push, formats: [obj]}
-YAML
+# examples/contact/sphere_lift.yaml: the strip's ends held, the sphere (collider motion) rising
+# 0.3 m from below in four steps: between solves it moves as far as CCD allows, with the strip's
+# vertices in its way pushed ahead of it, and every step is solved until it has arrived.
+sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/contact/sphere_lift.yaml" >push.yaml
 for ranks in 1 2; do
   rc=0
   timeout 300 mpiexec --oversubscribe -n $ranks "$MLSHELL" push.yaml -mlshell_quiet \
@@ -195,6 +179,21 @@ for ranks in (1, 2):
 a, b = vertices("out/push1/frame_000004.obj"), vertices("out/push2/frame_000004.obj")
 assert max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v)) < 1e-8, "1 vs 2 ranks"
 PY
+
+echo "check: the other contact examples run their first steps on 2 ranks, with no intersection"
+for scene in balloon_press balloon_in_corner cloth_on_sphere; do
+  sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/contact/$scene.yaml" >"$scene.yaml"
+  rc=0
+  timeout 300 mpiexec --oversubscribe -n 2 "$MLSHELL" "$scene.yaml" -mlshell_quiet \
+    -mlshell_steps 2 -mlshell_output_dir "out/$scene" >"$scene.log" 2>&1 || rc=$?
+  [[ $rc -eq 0 ]] || die "$scene: exit $rc: $(tail -5 "$scene.log")"
+  $PY - "out/$scene" <<'PY' || die "$scene: summary"
+import json, sys
+s = json.load(open(sys.argv[1] + "/summary.json"))
+assert s["status"] == "complete" and s["solver"]["converged"], s["status"]
+assert s["intersection_audit"] == {"frames": 3, "intersecting_pairs": 0}, s["intersection_audit"]
+PY
+done
 
 echo "check: the sphere pressing the strip into a plane above cannot arrive: exit 3, no intersection"
 sed 's/^time: {dt: 0.25, steps: 4,/time: {dt: 0.25, steps: 3, max_proximal_solves: 8,/' push.yaml |
