@@ -48,7 +48,7 @@ PetscErrorCode ColliderMotion::advance(double time, Vec u, bool* reached) {
     for (std::size_t k = 0; k < motions_.size(); ++k)
       if (motions_[k]) {
         from[k] = motions_[k](time_), to[k] = motions_[k](target);
-        moving[k] = !(from[k].rotation == to[k].rotation && from[k].translation == to[k].translation);
+        moving[k] = from[k].rotation != to[k].rotation || from[k].translation != to[k].translation;
       }
     const auto place = [&](int k, const Point3& x) -> Point3 {
       const RigidPlacement &a = from[k], &b = to[k];

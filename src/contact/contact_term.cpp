@@ -151,20 +151,24 @@ void ContactTerm::move_obstacles(const std::vector<std::vector<Point3>>& points)
   ++revision_;
 }
 
+void ContactTerm::set_obstacle_motion(const std::vector<std::vector<Point3>>* points) {
+  obstacle_dx_.clear();
+  if (points)
+    for (std::size_t k = 0; k < obstacles_.size(); ++k)
+      for (std::size_t i = 0; i < obstacles_[k].points.size(); ++i)
+        obstacle_dx_.push_back(points->at(k).at(i) - obstacles_[k].points[i]);
+  update_obstacle_boxes();
+  prepared_ = false;
+}
+
 PetscErrorCode ContactTerm::obstacle_step_limit(Vec u, Vec du,
                                                 const std::vector<std::vector<Point3>>& points,
                                                 double* alpha) {
   PetscFunctionBeginUser;
-  obstacle_dx_.clear();
-  for (std::size_t k = 0; k < obstacles_.size(); ++k)
-    for (std::size_t i = 0; i < obstacles_[k].points.size(); ++i)
-      obstacle_dx_.push_back(points.at(k).at(i) - obstacles_[k].points[i]);
-  update_obstacle_boxes();
+  set_obstacle_motion(&points);
   PetscErrorCode ierr = prepare(u, du);
   double mine = ierr ? 0.0 : max_step({}, {});
-  obstacle_dx_.clear();
-  update_obstacle_boxes();
-  prepared_ = false;
+  set_obstacle_motion(nullptr);
   PetscCall(ierr);
   PetscCallMPI(MPI_Allreduce(&mine, alpha, 1, MPI_DOUBLE, MPI_MIN, layout_.comm()));
   PetscFunctionReturn(0);
@@ -177,18 +181,15 @@ PetscErrorCode ContactTerm::carry(Vec u, const std::vector<std::vector<Point3>>&
   PetscFunctionBeginUser;
   // The obstacles' move against the shell at rest (du = 0): the swept pairs.
   PetscCall(VecZeroEntries(du));
-  obstacle_dx_.clear();
-  for (std::size_t k = 0; k < obstacles_.size(); ++k)
-    for (std::size_t i = 0; i < obstacles_[k].points.size(); ++i)
-      obstacle_dx_.push_back(points.at(k).at(i) - obstacles_[k].points[i]);
-  update_obstacle_boxes();
+  set_obstacle_motion(&points);
   const PetscErrorCode ierr = prepare(u, du);
   // Each shell vertex that a moving obstacle would reach at t (its time of impact) is pushed by
   // the fraction 1 − t/2 of that obstacle's rigid motion, the largest over its pairs: it keeps
   // ahead of the obstacle with half of the safe approach to spare.
   std::vector<double> fraction(x_.size(), 0.0);
   std::vector<int> pushed_by(x_.size(), -1);
-  for (const Pair& p : ierr || !finite_ ? std::vector<Pair>{} : pairs_) {
+  const std::vector<Pair> none;
+  for (const Pair& p : ierr || !finite_ ? none : pairs_) {
     int k = -1;
     for (int c : p.v)
       if (vertex_id_[c] >= num_shell_points_) k = obstacle_of_[vertex_id_[c] - num_shell_points_];
@@ -202,9 +203,7 @@ PetscErrorCode ContactTerm::carry(Vec u, const std::vector<std::vector<Point3>>&
       if (vertex_id_[c] < num_shell_points_ && 1.0 - 0.5 * r.toi > fraction[c])
         fraction[c] = 1.0 - 0.5 * r.toi, pushed_by[c] = k;
   }
-  obstacle_dx_.clear();
-  update_obstacle_boxes();
-  prepared_ = false;
+  set_obstacle_motion(nullptr);
   PetscCall(ierr);
   // Each pushed vertex goes to its owner as (PETSc block, fraction, obstacle), and the owner
   // keeps the largest fraction (the lowest obstacle among equals): the same push on any number
@@ -218,7 +217,8 @@ PetscErrorCode ContactTerm::carry(Vec u, const std::vector<std::vector<Point3>>&
   for (std::size_t c = 0; c < x_.size(); ++c) {
     if (pushed_by[c] < 0 || block_index_[c] < 0) continue;
     const int b = static_cast<int>(block_index_[c]);
-    const int r = static_cast<int>(std::upper_bound(first.begin(), first.end() - 1, b) - first.begin()) - 1;
+    const auto owner = std::upper_bound(first.begin(), first.end() - 1, b) - 1;
+    const auto r = static_cast<std::size_t>(owner - first.begin());
     send[r].insert(send[r].end(), {double(b), fraction[c], double(pushed_by[c])});
   }
   std::vector<double> received;
@@ -226,7 +226,8 @@ PetscErrorCode ContactTerm::carry(Vec u, const std::vector<std::vector<Point3>>&
   std::vector<double> best(owned, 0.0);
   std::vector<int> by(owned, -1);
   for (std::size_t i = 0; i < received.size(); i += 3) {
-    const int l = static_cast<int>(received[i]) - owned_first, k = static_cast<int>(received[i + 2]);
+    const int l = static_cast<int>(received[i]) - owned_first;
+    const int k = static_cast<int>(received[i + 2]);
     const double f = received[i + 1];
     if (f > best[l] || (f == best[l] && by[l] >= 0 && k < by[l])) best[l] = f, by[l] = k;
   }

@@ -161,8 +161,11 @@ class ContactTerm final : public EnergyTerm {
   std::vector<Eigen::Matrix<double, 6, 1>> obstacle_boxes_;  ///< each obstacle face's (lo, hi)
   /// Each obstacle vertex's move in a swept prepare (obstacle_step_limit); empty: none.
   std::vector<Eigen::Vector3d> obstacle_dx_;
-  std::vector<int> obstacle_of_;     ///< the obstacle of each obstacle vertex (surface id − shell's)
+  std::vector<int> obstacle_of_;     ///< each obstacle vertex's obstacle (surface id − shell's)
   std::vector<int> obstacle_first_;  ///< each obstacle's first surface id
+  /// obstacle_dx_ for the obstacles' straight move to `points` (null: none), their boxes over
+  /// it; the term is left unprepared.
+  void set_obstacle_motion(const std::vector<std::vector<Point3>>* points);
   /// Each obstacle face's box, over its move when obstacle_dx_ is set.
   void update_obstacle_boxes();
   /// send[r] to rank r, all received in rank order (collective).

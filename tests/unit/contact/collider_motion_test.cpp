@@ -2,14 +2,15 @@
 // is safe, pushing the shell ahead of it, never into it, also when it turns (a rotation's chord
 // is not its arc); it stops where the shell is caught against another collider; one that moves
 // away arrives at once, exactly at φ(X, t).
+#include "mlshell/contact/collider_motion.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "mlshell/contact/collider_motion.hpp"
-#include "mlshell/effect_builder.hpp"
 #include "../triangle/triangle_fixtures.hpp"
+#include "mlshell/effect_builder.hpp"
 
 using namespace mlshell;
 
