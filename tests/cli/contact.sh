@@ -6,9 +6,9 @@
 # keeps out) and with the trust region instead of projected Newton it ends in the same state; a
 # strip folded onto itself stays apart by self-contact on 2 ranks, and without self-contact the
 # audit stops it (exit 5); a sphere moving up into the held strip pushes it up on 1 and 2
-# ranks alike, and pressing it into a plane above stops the run (the sphere cannot arrive); the
-# other contact examples run their first two steps; and bad contact input exits 2 naming the
-# file and key.
+# ranks alike (and under implicit Euler), and pressing it into a plane above stops the run (the
+# sphere cannot arrive); the other contact examples run their first two steps; and bad contact
+# input exits 2 naming the file and key.
 #
 # usage: bash contact.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -178,6 +178,29 @@ for ranks in (1, 2):
     assert 0.25 + c["thickness"] < z < 0.26, z
 a, b = vertices("out/push1/frame_000004.obj"), vertices("out/push2/frame_000004.obj")
 assert max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v)) < 1e-8, "1 vs 2 ranks"
+PY
+
+echo "check: under implicit Euler the rising sphere lifts the strip too (6 steps of 50 ms)"
+# The colliders move before each solve of an implicit Euler step as well; the step keeps its
+# inertia predictor. After 0.3 s the sphere has risen 9 cm: its top is at z = 0.04.
+sed 's/^time: {dt: 0.25, steps: 4, integrator: quasistatic, proximal_step: 1.0}/time: {dt: 0.05, steps: 6, integrator: implicit_euler}/; s/^  - gravity:/  - inertia\n  - gravity:/' \
+  push.yaml >lift_dynamic.yaml
+grep -q "^  - inertia" lift_dynamic.yaml && grep -q "implicit_euler" lift_dynamic.yaml ||
+  die "lift_dynamic.yaml: $(cat lift_dynamic.yaml)"
+rc=0
+timeout 300 "$MLSHELL" lift_dynamic.yaml -mlshell_quiet -mlshell_output_dir out/lift_dynamic \
+  >lift_dynamic.log 2>&1 || rc=$?
+[[ $rc -eq 0 ]] || die "lift_dynamic: exit $rc: $(tail -5 lift_dynamic.log)"
+$PY - <<'PY' || die "lift_dynamic: outputs"
+import json
+from pathlib import Path
+s = json.load(open("out/lift_dynamic/summary.json"))
+assert s["status"] == "complete" and s["integrator"] == "implicit_euler", (s["status"], s["integrator"])
+assert s["intersection_audit"] == {"frames": 7, "intersecting_pairs": 0}, s["intersection_audit"]
+assert s["contact"]["collider_moves"] >= 6, s["contact"]
+top = max(float(l.split()[3]) for l in Path("out/lift_dynamic/colliders_000006.obj").read_text().splitlines()
+          if l.startswith("v "))
+assert abs(top - 0.04) < 1e-12, top
 PY
 
 echo "check: the other contact examples run their first steps on 2 ranks, with no intersection"
