@@ -225,7 +225,11 @@ PetscErrorCode ParallelLayout::create_matrix(Mat* A,
                                              const std::vector<std::array<int, 2>>& extra) const {
   PetscFunctionBeginUser;
   const auto pattern = block_pattern(extra);
-  const bool duplicate = first_matrix_ && first_pattern_ == pattern;
+  // Collective: the extra pairs may be each rank's own (a rank's rows only), so one rank may
+  // still have the earlier pattern while another does not.
+  int same = first_matrix_ && first_pattern_ == pattern;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_LAND, comm_));
+  const bool duplicate = same;
   if (duplicate) {
     // The pattern of an earlier matrix: PETSc 3.18's SeqAIJ copies its row and column indices
     // (MAT_SHARE_NONZERO_PATTERN or not), which is still cheaper than building them.

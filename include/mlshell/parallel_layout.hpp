@@ -50,7 +50,8 @@ class ParallelLayout {
   /// A global vector of displacements (block size 3, PETSc order).
   PetscErrorCode create_vector(Vec* v) const;
   /// A block-size-3 AIJ matrix preallocated for the element stencils and the given extra
-  /// point pairs (natural indices, coupled both ways), local-to-global mapping set, with the six
+  /// point pairs (natural indices, coupled both ways; each rank needs those with an end among its
+  /// own points, and may give only those), local-to-global mapping set, with the six
   /// rigid-body modes as near-nullspace (for algebraic multigrid) and the vertex patches (for
   /// PC "vpatch").
   PetscErrorCode create_matrix(Mat* A, const std::vector<std::array<int, 2>>& extra = {}) const;

@@ -67,13 +67,14 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
     obstacle_of_.insert(obstacle_of_.end(), o.points.size(), static_cast<int>(k));
     obstacle_first_.push_back(offset);
     rest_.insert(rest_.end(), o.points.begin(), o.points.end());
-    for (const Triangle& t : o.triangles) faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+    for (const Triangle& t : o.triangles)
+      faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   }
   surface_ = ContactSurface::from_faces(static_cast<int>(rest_.size()), std::move(faces));
   // Shell edges come first: their vertices are below every obstacle vertex.
-  num_shell_edges_ = static_cast<int>(std::count_if(
-      surface_.edges.begin(), surface_.edges.end(),
-      [&](const auto& e) { return e[1] < num_shell_points_; }));
+  num_shell_edges_ =
+      static_cast<int>(std::count_if(surface_.edges.begin(), surface_.edges.end(),
+                                     [&](const auto& e) { return e[1] < num_shell_points_; }));
   edge_owner_.assign(num_shell_edges_, std::numeric_limits<int>::max());
   for (int f = 0; f < num_shell_faces_; ++f) {
     const auto& t = surface_.faces[f];
@@ -85,8 +86,15 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
     }
   }
   update_obstacle_boxes();
-  const int rank = layout_.rank();
-  for (int l = 0; l < layout_.num_owned_points(); ++l) own_vertices_.push_back(layout_.local_points()[l]);
+  const int rank = layout_.rank(), size = layout_.size();
+  block_first_.resize(size + 1);
+  const int owned_first = layout_.first_owned(), owned = layout_.num_owned_points();
+  PetscCallAbort(layout_.comm(), MPI_Allgather(&owned_first, 1, MPI_INT, block_first_.data(), 1,
+                                               MPI_INT, layout_.comm()));
+  PetscCallAbort(layout_.comm(),
+                 MPI_Allreduce(&owned, &block_first_[size], 1, MPI_INT, MPI_SUM, layout_.comm()));
+  for (int l = 0; l < layout_.num_owned_points(); ++l)
+    own_vertices_.push_back(layout_.local_points()[l]);
   for (int e = 0; e < num_shell_edges_; ++e)
     if (edge_owner_[e] == rank) own_edges_.push_back(e);
   own_faces_ = layout_.local_elements();
@@ -115,8 +123,9 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
                                : 0.0;
     kappa_ = std::max(by_mass, settings_.vertex_force / holding);
     if (!(kappa_ > 0.0) || !std::isfinite(kappa_))
-      throw std::invalid_argument("contact: no barrier stiffness follows from the scene (no "
-                                  "mass and no force); give `stiffness`");
+      throw std::invalid_argument(
+          "contact: no barrier stiffness follows from the scene (no "
+          "mass and no force); give `stiffness`");
     kappa_max_ = 100.0 * kappa_;
   }
 }
@@ -176,8 +185,7 @@ PetscErrorCode ContactTerm::obstacle_step_limit(Vec u, Vec du,
 
 PetscErrorCode ContactTerm::carry(Vec u, const std::vector<std::vector<Point3>>& points,
                                   const std::vector<char>& moving,
-                                  const std::function<Point3(int, const Point3&)>& place,
-                                  Vec du) {
+                                  const std::function<Point3(int, const Point3&)>& place, Vec du) {
   PetscFunctionBeginUser;
   // The obstacles' move against the shell at rest (du = 0): the swept pairs.
   PetscCall(VecZeroEntries(du));
@@ -208,18 +216,12 @@ PetscErrorCode ContactTerm::carry(Vec u, const std::vector<std::vector<Point3>>&
   // Each pushed vertex goes to its owner as (PETSc block, fraction, obstacle), and the owner
   // keeps the largest fraction (the lowest obstacle among equals): the same push on any number
   // of ranks, whichever ranks own the pairs.
-  const int size = layout_.size();
-  std::vector<int> first(size + 1);
   const int owned_first = layout_.first_owned(), owned = layout_.num_owned_points();
-  PetscCallMPI(MPI_Allgather(&owned_first, 1, MPI_INT, first.data(), 1, MPI_INT, layout_.comm()));
-  PetscCallMPI(MPI_Allreduce(&owned, &first[size], 1, MPI_INT, MPI_SUM, layout_.comm()));
-  std::vector<std::vector<double>> send(size);
+  std::vector<std::vector<double>> send(layout_.size());
   for (std::size_t c = 0; c < x_.size(); ++c) {
     if (pushed_by[c] < 0 || block_index_[c] < 0) continue;
-    const int b = static_cast<int>(block_index_[c]);
-    const auto owner = std::upper_bound(first.begin(), first.end() - 1, b) - 1;
-    const auto r = static_cast<std::size_t>(owner - first.begin());
-    send[r].insert(send[r].end(), {double(b), fraction[c], double(pushed_by[c])});
+    const int r = owner_of_block(block_index_[c]);
+    send[r].insert(send[r].end(), {double(block_index_[c]), fraction[c], double(pushed_by[c])});
   }
   std::vector<double> received;
   PetscCall(exchange(send, received));
@@ -252,8 +254,8 @@ PetscErrorCode ContactTerm::exchange(const std::vector<std::vector<double>>& sen
   const int size = layout_.size();
   std::vector<int> send_counts(size), recv_counts(size), send_displs(size, 0), recv_displs(size, 0);
   for (int r = 0; r < size; ++r) send_counts[r] = static_cast<int>(send[r].size());
-  PetscCallMPI(MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT,
-                            layout_.comm()));
+  PetscCallMPI(
+      MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, layout_.comm()));
   std::vector<double> flat;
   for (int r = 0; r < size; ++r) {
     if (r > 0) {
@@ -297,7 +299,8 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
   }
   const auto& points = layout_.local_points();
   auto position = [&](int l) {
-    return Eigen::Vector3d(rest_[points[l]] + Eigen::Vector3d(ul[3 * l], ul[3 * l + 1], ul[3 * l + 2]));
+    return Eigen::Vector3d(rest_[points[l]] +
+                           Eigen::Vector3d(ul[3 * l], ul[3 * l + 1], ul[3 * l + 2]));
   };
   auto motion = [&](int l) {
     return swept_ ? Eigen::Vector3d(dl[3 * l], dl[3 * l + 1], dl[3 * l + 2])
@@ -322,8 +325,8 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
   std::vector<double> received;  // (id, x, dx) per vertex
   if (size > 1) {
     std::vector<double> boxes(6 * size);
-    PetscCallMPI(MPI_Allgather(mine.data(), 6, MPI_DOUBLE, boxes.data(), 6, MPI_DOUBLE,
-                               layout_.comm()));
+    PetscCallMPI(
+        MPI_Allgather(mine.data(), 6, MPI_DOUBLE, boxes.data(), 6, MPI_DOUBLE, layout_.comm()));
     std::vector<std::vector<double>> send(size);
     std::vector<int> marked(num_shell_points_, -1);  // the last rank a vertex was sent to
     auto primitive_box = [&](const int* v, int n) {
@@ -389,14 +392,16 @@ PetscErrorCode ContactTerm::prepare(Vec u, Vec du) {
   }
   if (!swept_ && vertex_id_ == list_vertex_id_) {
     double moved = 0.0;
-    for (std::size_t i = 0; i < x_.size(); ++i) moved = std::max(moved, (x_[i] - list_x_[i]).norm());
+    for (std::size_t i = 0; i < x_.size(); ++i)
+      moved = std::max(moved, (x_[i] - list_x_[i]).norm());
     if (moved < skin) {
       pairs_ = list_pairs_;
       PetscFunctionReturn(0);
     }
   }
   std::vector<int> edge_id, face_id;
-  const ContactSurface known = known_surface(compact, static_cast<int>(x_.size()), edge_id, face_id);
+  const ContactSurface known =
+      known_surface(compact, static_cast<int>(x_.size()), edge_id, face_id);
 
   ContactCandidates candidates;
   if (swept_) {
@@ -496,16 +501,16 @@ double ContactTerm::pair_energy(const Pair& p, Vector12* grad, Matrix12* hess, b
       edge_edge_distance(a, b, c, d, type, derivatives ? &gd : nullptr, hess ? &hd : nullptr);
   if (dist >= barrier.activation_squared_distance()) return 0.0;
   *active = true;
-  const int *v = p.v.data();
-  const double eps_x = edge_edge_mollifier_threshold(
-      rest_[vertex_id_[v[0]]], rest_[vertex_id_[v[1]]], rest_[vertex_id_[v[2]]],
-      rest_[vertex_id_[v[3]]]);
+  const int* v = p.v.data();
+  const double eps_x =
+      edge_edge_mollifier_threshold(rest_[vertex_id_[v[0]]], rest_[vertex_id_[v[1]]],
+                                    rest_[vertex_id_[v[2]]], rest_[vertex_id_[v[3]]]);
   if (!edge_edge_mollifier_active(a, b, c, d, eps_x))
     return barrier_pair_energy<12>(kappa_, barrier, dist, gd, hd, grad, hess, project);
   Vector12 gm = Vector12::Zero();
   Matrix12 hm = Matrix12::Zero();
-  const double m = edge_edge_mollifier(a, b, c, d, eps_x, derivatives ? &gm : nullptr,
-                                       hess ? &hm : nullptr);
+  const double m =
+      edge_edge_mollifier(a, b, c, d, eps_x, derivatives ? &gm : nullptr, hess ? &hm : nullptr);
   return mollified_barrier_pair_energy(kappa_, barrier, dist, gd, hd, m, gm, hm, grad, hess,
                                        project);
 }
@@ -552,7 +557,8 @@ PetscErrorCode ContactTerm::add(const std::vector<double>&, CompensatedSum& ener
           for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c)
               block[(3 * a + r) * 3 * n + 3 * b + c] = h(3 * which[a] + r, 3 * which[b] + c);
-      PetscCall(MatSetValuesBlocked(hess, n, rows.data(), n, rows.data(), block.data(), ADD_VALUES));
+      PetscCall(
+          MatSetValuesBlocked(hess, n, rows.data(), n, rows.data(), block.data(), ADD_VALUES));
     }
   }
   PetscFunctionReturn(0);
@@ -576,9 +582,8 @@ double ContactTerm::max_step(const std::vector<double>&, const std::vector<doubl
   for (const Pair& p : pairs_) {
     const Vector12 x0 = stencil(p, 0.0), dx = stencil(p, 1.0) - x0;
     const CcdResult r =
-        p.edge_edge
-            ? edge_edge_ccd(x0, dx, settings_.barrier.thickness, alpha, settings_.ccd)
-            : point_triangle_ccd(x0, dx, settings_.barrier.thickness, alpha, settings_.ccd);
+        p.edge_edge ? edge_edge_ccd(x0, dx, settings_.barrier.thickness, alpha, settings_.ccd)
+                    : point_triangle_ccd(x0, dx, settings_.barrier.thickness, alpha, settings_.ccd);
     if (r.may_collide) alpha = std::min(alpha, r.toi);
   }
   return alpha;
@@ -610,32 +615,43 @@ void ContactTerm::extend_sparsity(std::vector<std::array<int, 2>>& pairs) const 
 
 PetscErrorCode ContactTerm::update_sparsity() {
   PetscFunctionBeginUser;
-  std::vector<int> mine;  // natural point pairs (a < b), flattened
+  // Each pair of natural points (a < b) goes to the owners of a's and b's rows, and stays here,
+  // where its blocks are added (an edge–edge pair's owner may own neither end). A rank's
+  // pattern holds those pairs only, which is all its matrix needs.
+  std::vector<std::vector<double>> send(layout_.size());
   for (const Pair& p : pairs_) {
     // Point–triangle: the point with the triangle; edge–edge: each end with each end.
     const int first = p.edge_edge ? 2 : 1;
     for (int i = 0; i < first; ++i)
       for (int j = first; j < 4; ++j) {
-        const int a = vertex_id_[p.v[i]], b = vertex_id_[p.v[j]];
-        if (a >= num_shell_points_ || b >= num_shell_points_) continue;
-        mine.push_back(std::min(a, b)), mine.push_back(std::max(a, b));
+        const int a = std::min(vertex_id_[p.v[i]], vertex_id_[p.v[j]]);
+        const int b = std::max(vertex_id_[p.v[i]], vertex_id_[p.v[j]]);
+        if (b >= num_shell_points_) continue;
+        const int ra = owner_of_block(layout_.petsc_of(a)),
+                  rb = owner_of_block(layout_.petsc_of(b));
+        const int me = layout_.rank();
+        send[ra].insert(send[ra].end(), {double(a), double(b)});
+        if (rb != ra) send[rb].insert(send[rb].end(), {double(a), double(b)});
+        if (me != ra && me != rb) send[me].insert(send[me].end(), {double(a), double(b)});
       }
   }
-  int count = static_cast<int>(mine.size());
-  std::vector<int> counts(layout_.size()), displs(layout_.size(), 0);
-  PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, layout_.comm()));
-  for (int r = 1; r < layout_.size(); ++r) displs[r] = displs[r - 1] + counts[r - 1];
-  std::vector<int> all(displs.back() + counts.back());
-  PetscCallMPI(MPI_Allgatherv(mine.data(), count, MPI_INT, all.data(), counts.data(),
-                              displs.data(), MPI_INT, layout_.comm()));
+  std::vector<double> received;
+  PetscCall(exchange(send, received));
   std::vector<std::array<int, 2>> current;
-  for (std::size_t k = 0; k < all.size(); k += 2) current.push_back({all[k], all[k + 1]});
+  for (std::size_t k = 0; k < received.size(); k += 2)
+    current.push_back({static_cast<int>(received[k]), static_cast<int>(received[k + 1])});
   std::sort(current.begin(), current.end());
   current.erase(std::unique(current.begin(), current.end()), current.end());
-  if (std::includes(pattern_.begin(), pattern_.end(), current.begin(), current.end()) &&
-      pattern_.size() <= 2 * current.size() + 64)
-    PetscFunctionReturn(0);
-  if (pattern_.size() > 2 * current.size() + 64) {
+  // Restarts and rebuilds happen on every rank or on none: a pair between two ranks' rows is
+  // then in both ranks' patterns or in neither (a rank's matrix sends its ghost rows' blocks,
+  // within its own pattern, to their owners).
+  int change[2] = {
+      pattern_.size() > 2 * current.size() + 64,
+      !std::includes(pattern_.begin(), pattern_.end(), current.begin(), current.end())};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, change, 2, MPI_INT, MPI_LOR, layout_.comm()));
+  const bool restart = change[0];
+  if (!restart && !change[1]) PetscFunctionReturn(0);
+  if (restart) {
     pattern_ = std::move(current);  // restart from the current pairs
   } else {
     std::vector<std::array<int, 2>> grown;
@@ -645,6 +661,11 @@ PetscErrorCode ContactTerm::update_sparsity() {
   }
   ++version_, ++rebuilds_;
   PetscFunctionReturn(0);
+}
+
+int ContactTerm::owner_of_block(PetscInt block) const {
+  return static_cast<int>(std::upper_bound(block_first_.begin(), block_first_.end() - 1, block) -
+                          block_first_.begin() - 1);
 }
 
 PetscErrorCode ContactTerm::statistics(ContactStatistics* s) const {

@@ -24,7 +24,8 @@
 // The Hessian's pattern follows the pairs (update_sparsity): the point pairs of the candidates
 // seen so far are the pattern (extend_sparsity); when a Hessian needs one outside it, the
 // pattern grows, sparsity_version() changes and LevelProblem rebuilds the matrix under the
-// same handle. It restarts from the current pairs when it holds over twice as many.
+// same handle. It restarts from the current pairs when it holds over twice as many. A rank's
+// pattern holds the pairs of its own rows only: each pair is sent to the owners of its rows.
 //
 // The proximity candidates are a Verlet list: found within ξ + ĝ + 2s (the skin s = ξ + ĝ) and
 // reused while every known vertex stays within s of where it was then, so that the evaluations
@@ -38,10 +39,11 @@
 // them there, and carry gives the step that takes the shell vertices near a moving obstacle
 // along with it (collider_motion.hpp drives them).
 //
-// Stiffness κ: the scene's, or adaptive. IPC's κ_min from the lumped masses (adaptive_stiffness.hpp)
-// is the scale of inertia and far too soft for quasistatics (a sheet resting on a sphere sank
-// to the thickness ξ with it); the start is instead the κ at which one pair at half the gap,
-// d½ = (ξ + ĝ/2)², holds the force f a vertex must carry (ContactSettings::vertex_force):
+// Stiffness κ: the scene's, or adaptive. IPC's κ_min from the lumped masses
+// (adaptive_stiffness.hpp) is the scale of inertia and far too soft for quasistatics (a sheet
+// resting on a sphere sank to the thickness ξ with it); the start is instead the κ at which one
+// pair at half the gap, d½ = (ξ + ĝ/2)², holds the force f a vertex must carry
+// (ContactSettings::vertex_force):
 //   κ₀ = max(κ_min, f / (|b_ξ'(d½)| 2√d½)),   κ_max = 100 κ₀,
 // and after an accepted iterate κ doubles (up to κ_max) while the smallest gap is below 10⁻² ĝ
 // and shrinking (IPC's rule with its threshold raised from 10⁻⁹ L).
@@ -76,13 +78,13 @@ struct ContactSettings {
 
 /// What a contact term saw at the last prepared state (summed or reduced over the ranks).
 struct ContactStatistics {
-  long candidates = 0;                  ///< broad-phase pairs (owned; the Verlet list's)
-  long active = 0;                      ///< pairs closer than ξ + ĝ
-  double min_distance = INFINITY;       ///< the smallest pair distance (m), ∞ without pairs
-  double stiffness = 0.0;               ///< κ
-  long halo_points = 0;                 ///< vertices received from other ranks
-  long pattern_rebuilds = 0;            ///< Hessian patterns grown or restarted so far
-  long list_builds = 0;                 ///< proximity broad phases run so far (Verlet lists)
+  long candidates = 0;             ///< broad-phase pairs (owned; the Verlet list's)
+  long active = 0;                 ///< pairs closer than ξ + ĝ
+  double min_distance = INFINITY;  ///< the smallest pair distance (m), ∞ without pairs
+  double stiffness = 0.0;          ///< κ
+  long halo_points = 0;            ///< vertices received from other ranks
+  long pattern_rebuilds = 0;       ///< Hessian patterns grown or restarted so far
+  long list_builds = 0;            ///< proximity broad phases run so far (Verlet lists)
 };
 
 class ContactTerm final : public EnergyTerm {
@@ -121,8 +123,7 @@ class ContactTerm final : public EnergyTerm {
   /// The largest fraction α ∈ [0, 1] of the joint straight move of the shell, u → u + du, and
   /// of the obstacles, to `points`, that keeps every pair apart by more than ξ (additive CCD,
   /// over all ranks; collective). Leaves the term unprepared.
-  PetscErrorCode obstacle_step_limit(Vec u, Vec du,
-                                     const std::vector<std::vector<Point3>>& points,
+  PetscErrorCode obstacle_step_limit(Vec u, Vec du, const std::vector<std::vector<Point3>>& points,
                                      double* alpha);
   /// The step du that pushes the shell ahead of the obstacles flagged in `moving` as they move
   /// straight to `points` (collective): a shell vertex that obstacle k would reach at its time
@@ -153,11 +154,11 @@ class ContactTerm final : public EnergyTerm {
   std::vector<TriangleMesh> obstacles_;
   ContactSettings settings_;
   int num_shell_points_ = 0, num_shell_faces_ = 0, num_shell_edges_ = 0;
-  std::vector<Eigen::Vector3d> rest_;      ///< every surface vertex (shell, then obstacles)
-  ContactSurface surface_;                 ///< the whole surface (global ids)
-  std::vector<int> edge_owner_;            ///< owner of each shell edge
-  std::vector<int> own_vertices_, own_edges_, own_faces_;  ///< this rank's primitives
-  std::vector<int> own_box_points_;        ///< local indices of their vertices
+  std::vector<Eigen::Vector3d> rest_;  ///< every surface vertex (shell, then obstacles)
+  ContactSurface surface_;             ///< the whole surface (global ids)
+  std::vector<int> edge_owner_;        ///< owner of each shell edge
+  std::vector<int> own_vertices_, own_edges_, own_faces_;    ///< this rank's primitives
+  std::vector<int> own_box_points_;                          ///< local indices of their vertices
   std::vector<Eigen::Matrix<double, 6, 1>> obstacle_boxes_;  ///< each obstacle face's (lo, hi)
   /// Each obstacle vertex's move in a swept prepare (obstacle_step_limit); empty: none.
   std::vector<Eigen::Vector3d> obstacle_dx_;
@@ -168,6 +169,9 @@ class ContactTerm final : public EnergyTerm {
   void set_obstacle_motion(const std::vector<std::vector<Point3>>* points);
   /// Each obstacle face's box, over its move when obstacle_dx_ is set.
   void update_obstacle_boxes();
+  std::vector<int> block_first_;  ///< each rank's first PETSc block, then the number of blocks
+  /// The rank that owns PETSc block `block`.
+  int owner_of_block(PetscInt block) const;
   /// send[r] to rank r, all received in rank order (collective).
   PetscErrorCode exchange(const std::vector<std::vector<double>>& send,
                           std::vector<double>& received) const;
