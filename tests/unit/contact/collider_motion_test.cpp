@@ -35,18 +35,36 @@ PrescribedMotion turn(double y, double angle) {
   return motion_function(m);
 }
 
+/// A scene's problem, its contact term and a zero displacement u.
+struct Sheet {
+  Sheet(const char* name, const std::string& yaml)
+      : scene(triangle_scene(name, yaml)), tp(scene, PETSC_COMM_SELF) {
+    contact = tp.problem->find_term<ContactTerm>();
+    tp.layout().create_vector(&u);
+    VecZeroEntries(u);
+  }
+  ~Sheet() { VecDestroy(&u); }
+  /// The largest displacement of any vertex component.
+  double pushed() const {
+    PetscReal norm;
+    VecNorm(u, NORM_INFINITY, &norm);
+    return norm;
+  }
+  Scene scene;
+  TriangleProblem tp;
+  ContactTerm* contact = nullptr;
+  Vec u = nullptr;
+};
+
 }  // namespace
 
 // The plane's far half swings up through the sheet (a quarter turn about an axis beyond the
 // sheet's edge): after every advance the sheet is still farther than the thickness from it, and
 // where the plane has moved, it is at a rigid place of its motion.
 TEST(ColliderMotion, ATurningPlaneNeverComesWithinTheThickness) {
-  const Scene scene = triangle_scene("collider_turn", kScene);
-  TriangleProblem tp(scene, PETSC_COMM_SELF);
-  auto* contact = tp.problem->find_term<ContactTerm>();
-  Vec u;
-  tp.layout().create_vector(&u);
-  VecZeroEntries(u);
+  Sheet sheet("collider_turn", kScene);
+  ContactTerm* contact = sheet.contact;
+  Vec u = sheet.u;
   const std::vector<Point3> rest = contact->obstacles()[0].points;
   const PrescribedMotion motion = turn(0.75, -M_PI / 2);
   ColliderMotion driver(*contact, {motion}, u);
@@ -64,30 +82,20 @@ TEST(ColliderMotion, ATurningPlaneNeverComesWithinTheThickness) {
   }
   EXPECT_TRUE(reached);
   EXPECT_GT(driver.moves(), 0);
-  PetscReal pushed;
-  VecNorm(u, NORM_INFINITY, &pushed);
-  EXPECT_GT(pushed, 0.05);  // the sheet was carried up with the plane
-  VecDestroy(&u);
+  EXPECT_GT(sheet.pushed(), 0.05);  // the sheet was carried up with the plane
 }
 
 // Turned the other way the plane swings down, away from the sheet: one move, nothing pushed.
 TEST(ColliderMotion, APlaneTurningAwayArrivesInOneMoveAndPushesNothing) {
-  const Scene scene = triangle_scene("collider_away", kScene);
-  TriangleProblem tp(scene, PETSC_COMM_SELF);
-  auto* contact = tp.problem->find_term<ContactTerm>();
-  Vec u;
-  tp.layout().create_vector(&u);
-  VecZeroEntries(u);
-  ColliderMotion driver(*contact, {turn(0.75, M_PI / 2)}, u);
+  Sheet sheet("collider_away", kScene);
+  Vec u = sheet.u;
+  ColliderMotion driver(*sheet.contact, {turn(0.75, M_PI / 2)}, u);
   bool reached = false;
   ASSERT_EQ(driver.advance(1.0, u, &reached), 0);
   EXPECT_TRUE(reached);
   EXPECT_EQ(driver.moves(), 1);
   EXPECT_EQ(driver.cut_moves(), 0);
-  PetscReal pushed;
-  VecNorm(u, NORM_INFINITY, &pushed);
-  EXPECT_EQ(pushed, 0.0);
-  VecDestroy(&u);
+  EXPECT_EQ(sheet.pushed(), 0.0);
 }
 
 // With a ceiling 5 cm above the sheet, the turning plane pushes the sheet into it: CCD cuts the
@@ -97,13 +105,10 @@ TEST(ColliderMotion, ATurningPlaneStopsWhereTheSheetIsCaughtUnderACeiling) {
   std::string yaml = kScene;
   yaml.insert(yaml.find("time:"),
               "  - collider: {plane: {point: [0, 0, 0.05], normal: [0, 0, -1], side: 1.0}}\n");
-  const Scene scene = triangle_scene("collider_caught", yaml);
-  TriangleProblem tp(scene, PETSC_COMM_SELF);
-  auto* contact = tp.problem->find_term<ContactTerm>();
+  Sheet sheet("collider_caught", yaml);
+  ContactTerm* contact = sheet.contact;
+  Vec u = sheet.u;
   ASSERT_EQ(contact->obstacles().size(), 2u);
-  Vec u;
-  tp.layout().create_vector(&u);
-  VecZeroEntries(u);
   ColliderMotion driver(*contact, {turn(0.75, -M_PI / 2), PrescribedMotion()}, u);
   bool reached = false;
   for (int advances = 0; advances < 40 && !reached; ++advances) {
@@ -116,5 +121,4 @@ TEST(ColliderMotion, ATurningPlaneStopsWhereTheSheetIsCaughtUnderACeiling) {
   EXPECT_FALSE(reached);
   EXPECT_GT(driver.cut_moves(), 0);
   EXPECT_LT(driver.time(), 1.0);
-  VecDestroy(&u);
 }
