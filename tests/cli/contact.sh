@@ -226,6 +226,8 @@ grep -q "max_proximal_solves: 8" pinch.yaml || die "pinch.yaml: $(cat pinch.yaml
 rc=0
 timeout 300 "$MLSHELL" pinch.yaml -mlshell_quiet -mlshell_output_dir out/pinch >pinch.log 2>&1 || rc=$?
 [[ $rc -eq 3 ]] || die "pinch: exit $rc, expected 3: $(tail -3 pinch.log)"
+grep -q "^mlshell: step 3 did not converge: a collider could not reach its place at t = 0.75 s" \
+  pinch.log || die "pinch: no collider message in: $(cat pinch.log)"
 $PY - <<'PY' || die "pinch: summary"
 import json
 s = json.load(open("out/pinch/summary.json"))
