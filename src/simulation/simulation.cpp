@@ -631,9 +631,9 @@ PetscErrorCode Simulation::run(int* status) {
       PetscCall(PetscPrintf(comm_,
                             "mlshell: step %d did not converge: a collider could not reach its "
                             "place at t = %g s (DIVERGED_COLLIDER_MOTION after %d solves); "
-                            "stopping. The shell is caught between it and something else (another "
-                            "collider, a boundary condition, itself), or the step moves it too far: "
-                            "try smaller steps (time.dt) or more proximal solves "
+                            "stopping. The shell is caught between it and something else "
+                            "(another collider, a boundary condition, itself), or the step moves "
+                            "it too far: try smaller steps (time.dt) or more proximal solves "
                             "(time.max_proximal_solves)\n",
                             n, n * scene_.time.dt, report.solves));
       break;
