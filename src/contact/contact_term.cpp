@@ -126,7 +126,7 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
       throw std::invalid_argument(
           "contact: no barrier stiffness follows from the scene (no "
           "mass and no force); give `stiffness`");
-    kappa_max_ = 100.0 * kappa_;
+    kappa_max_ = std::max(100.0 * kappa_, settings_.max_vertex_force / holding);
   }
 }
 

@@ -96,6 +96,8 @@ std::unique_ptr<ContactTerm> build_contact_term(const Scene& scene, const Contac
   }
   settings.vertex_force = std::max(per_area * area / mesh.num_points(),
                                    1e-4 * membrane_stiffness * settings.barrier.gap);
+  // The most: the loads' share, or a membrane stretched to twice its length across an edge.
+  settings.max_vertex_force = std::max(settings.vertex_force, membrane_stiffness * edge_length);
   std::vector<TriangleMesh> obstacles;
   for (const Effect& e : scene.effects)
     if (const auto* collider = std::get_if<ColliderEffect>(&e))

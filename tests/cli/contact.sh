@@ -7,8 +7,9 @@
 # strip folded onto itself stays apart by self-contact on 2 ranks, and without self-contact the
 # audit stops it (exit 5); a sphere moving up into the held strip pushes it up on 1 and 2
 # ranks alike (and under implicit Euler), and pressing it into a plane above stops the run (the
-# sphere cannot arrive); the other contact examples run their first two steps; and bad contact
-# input exits 2 naming the file and key.
+# sphere cannot arrive); the other contact examples run their first two steps; a coarse twist
+# winds a rope whose tension raises the barrier's stiffness past IPC's cap, on 1 and 2 ranks
+# alike; and bad contact input exits 2 naming the file and key.
 #
 # usage: bash contact.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -217,6 +218,40 @@ assert s["status"] == "complete" and s["solver"]["converged"], s["status"]
 assert s["intersection_audit"] == {"frames": 3, "intersecting_pairs": 0}, s["intersection_audit"]
 PY
 done
+
+echo "check: the twist, coarse (12 x 12 faces, 16 steps of 0.5 s), winds a rope on 1 and 2 ranks alike"
+cp "$SRC/examples/contact/twist-options.yaml" .
+sed -e 's/faces: \[16, 16\]/faces: [12, 12]/' -e 's/dt: 0.1, steps: 150/dt: 0.5, steps: 16/' \
+  "$SRC/examples/contact/twist.yaml" >twist.yaml
+grep -q "steps: 16" twist.yaml || die "twist.yaml: $(cat twist.yaml)"
+for ranks in 1 2; do
+  rc=0
+  timeout 300 mpiexec --oversubscribe -n $ranks "$MLSHELL" twist.yaml -mlshell_quiet \
+    -mlshell_output_dir "out/twist$ranks" >"twist$ranks.log" 2>&1 || rc=$?
+  [[ $rc -eq 0 ]] || die "twist, $ranks rank(s): exit $rc: $(tail -5 "twist$ranks.log")"
+done
+$PY - <<'PY' || die "twist"
+import csv, json
+from pathlib import Path
+
+def final(name):
+    obj = sorted(Path(f"out/{name}").glob("frame_*.obj"))[-1].read_text().splitlines()
+    return [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
+
+for name in ("twist1", "twist2"):
+    s = json.load(open(f"out/{name}/summary.json"))
+    assert s["status"] == "complete" and s["solver"]["converged"], (name, s["status"])
+    assert s["intersection_audit"] == {"frames": 17, "intersecting_pairs": 0}, s["intersection_audit"]
+    c = s["contact"]
+    assert c["active_pairs"] > 100 and c["thickness"] < c["min_distance"], c  # the rope's layers
+    rows = list(csv.DictReader(open(f"out/{name}/steps.csv")))
+    kappa = [float(r["contact_stiffness"]) for r in rows]
+    # The rope's pull raises κ past IPC's cap of 100 κ₀ (docs/contact.md#stiffness).
+    assert max(kappa) > 1000 * kappa[0], kappa
+a, b = final("twist1"), final("twist2")
+gap = max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v))
+assert len(a) == len(b) == 169 and gap < 1e-6, gap
+PY
 
 echo "check: the sphere pressing the strip into a plane above cannot arrive: exit 3, no intersection"
 sed 's/^time: {dt: 0.25, steps: 4,/time: {dt: 0.25, steps: 3, max_proximal_solves: 8,/' push.yaml |

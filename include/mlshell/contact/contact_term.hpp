@@ -44,9 +44,11 @@
 // resting on a sphere sank to the thickness ξ with it); the start is instead the κ at which one
 // pair at half the gap, d½ = (ξ + ĝ/2)², holds the force f a vertex must carry
 // (ContactSettings::vertex_force):
-//   κ₀ = max(κ_min, f / (|b_ξ'(d½)| 2√d½)),   κ_max = 100 κ₀,
+//   κ₀ = max(κ_min, f / (|b_ξ'(d½)| 2√d½)),   κ_max = max(100 κ₀, f_max / (|b_ξ'(d½)| 2√d½)),
 // and after an accepted iterate κ doubles (up to κ_max) while the smallest gap is below 10⁻² ĝ
-// and shrinking (IPC's rule with its threshold raised from 10⁻⁹ L).
+// and shrinking (IPC's rule with its threshold raised from 10⁻⁹ L). f_max
+// (ContactSettings::max_vertex_force) is the most a vertex can be pressed with: IPC's 100 κ₀ is
+// too soft where the shell's own tension presses it together (a twisted rope).
 #pragma once
 
 #include <petscmat.h>
@@ -73,6 +75,7 @@ struct ContactSettings {
   double average_mass = 0.0;   ///< m̄ (kg), the average lumped nodal mass (adaptive κ)
   double bbox_diagonal = 0.0;  ///< L (m), the scene's size (adaptive κ)
   double vertex_force = 0.0;   ///< f (N), the force a vertex in contact must hold (adaptive κ)
+  double max_vertex_force = 0.0;  ///< f_max (N), the most a vertex is pressed with (κ_max)
   AdditiveCcdOptions ccd;
 };
 

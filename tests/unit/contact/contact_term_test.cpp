@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 
+#include "mlshell/contact/barrier/adaptive_stiffness.hpp"
 #include "mlshell/contact/contact_term.hpp"
 #include "../triangle/triangle_fixtures.hpp"
 
@@ -229,4 +230,49 @@ TEST(ContactTerm, ObstaclesMoveOnlyAsFarAsCcdAllowsAndPushTheShellAhead) {
   EXPECT_TRUE(std::isfinite(f));
   VecDestroy(&u);
   VecDestroy(&du);
+}
+
+// Adaptive κ (contact_term.hpp): the sheet lowered towards the plane within 10⁻² ĝ of the
+// thickness, a little closer after each accepted iterate, doubles κ up to its cap and no
+// further: 100 κ₀ (IPC's) when nothing presses harder than the force f a vertex holds, and the κ
+// at which one pair at half the gap holds f_max when the shell's own pull may press harder.
+TEST(ContactTerm, AdaptiveStiffnessDoublesUpToTheForceAVertexCanBePressedWith) {
+  std::string yaml = contact_scene(false);
+  yaml.replace(yaml.find("stiffness: 10, "), 15, "");
+  const Scene scene = triangle_scene("contact_adaptive", yaml);
+  TriangleProblem tp(scene, PETSC_COMM_SELF);
+  const auto* term = tp.problem->find_term<ContactTerm>();
+  ContactSettings settings = term->settings();
+  ASSERT_EQ(settings.stiffness, 0.0);
+  const double half = settings.barrier.thickness + 0.5 * settings.barrier.gap;
+  const double holding = std::abs(settings.barrier.first_derivative(half * half)) * 2.0 * half;
+  for (const double pull : {1.0, 1e4}) {
+    settings.vertex_force = 1.0;
+    settings.max_vertex_force = pull;
+    LevelProblem problem(tp.layout());
+    problem.add_term(std::make_unique<ContactTerm>("contact", tp.disc().mesh(), tp.layout(),
+                                                   term->obstacles(), settings));
+    const auto* contact = problem.find_term<ContactTerm>();
+    const double kappa0 = contact->stiffness();
+    EXPECT_DOUBLE_EQ(kappa0, std::max(1.0 / holding, min_barrier_stiffness(
+                                                         settings.barrier, settings.bbox_diagonal,
+                                                         settings.average_mass)));
+    const double cap = std::max(100.0 * kappa0, pull / holding);
+    Vec u;
+    tp.layout().create_vector(&u);
+    // The plane is 5 cm below; the gap to the thickness shrinks from 9e-4 by 1e-5 per iterate.
+    for (int k = 0; k < 40; ++k) {
+      VecSet(u, 0.0);
+      for (PetscInt i = 2; i < 3 * tp.disc().mesh().num_points(); i += 3)
+        VecSetValue(u, i, -0.04 + 9e-4 - 1e-5 * k, INSERT_VALUES);
+      VecAssemblyBegin(u);
+      VecAssemblyEnd(u);
+      double f;
+      problem.objective(u, &f, nullptr);
+      problem.accepted(u);
+    }
+    EXPECT_DOUBLE_EQ(contact->stiffness(), cap) << "f_max = " << pull;
+    EXPECT_GT(cap, (pull > 1.0 ? 1000.0 : 99.0) * kappa0);
+    VecDestroy(&u);
+  }
 }
