@@ -22,6 +22,7 @@ declare -A view=([plate]="--zscale 1000" [clamped_plate]="--zscale 1000"
 mkdir -p examples/pictures docs/pictures out/pictures
 for scene in examples/*.yaml examples/triangle/*.yaml examples/contact/*.yaml; do
   name=$(basename "$scene" .yaml)
+  [[ $name == *-options ]] && continue  # a scene's PETSc options, not a scene
   [ $# -eq 0 ] || [[ " $* " == *" $name "* ]] || continue
   out=out/pictures/$name
   echo "render_pictures: $scene -> examples/pictures/$name.png"
