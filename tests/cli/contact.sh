@@ -18,14 +18,15 @@ source "$(dirname "$0")/lib/common.bash" "$@"
 sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/contact/strip_over_sphere.yaml" \
   >strip.yaml
 
-run() {  # run NAME RANKS [OPTIONS...]: the scene into out/NAME, exit 0 expected
-  local name=$1 ranks=$2
-  shift 2
+run_scene() {  # run_scene SCENE NAME RANKS [OPTIONS...]: SCENE into out/NAME, exit 0 expected
+  local scene=$1 name=$2 ranks=$3
+  shift 3
   local rc=0
-  timeout 300 mpiexec --oversubscribe -n "$ranks" "$MLSHELL" strip.yaml -mlshell_quiet \
+  timeout 300 mpiexec --oversubscribe -n "$ranks" "$MLSHELL" "$scene" -mlshell_quiet \
     -mlshell_output_dir "out/$name" "$@" >"$name.log" 2>&1 || rc=$?
   [[ $rc -eq 0 ]] || die "$name: exit $rc: $(tail -5 "$name.log")"
 }
+run() { run_scene strip.yaml "$@"; }  # run NAME RANKS [OPTIONS...]: the strip
 
 echo "check: the strip over the sphere on 1, 2 and 3 ranks, in one load step, and by tr"
 run serial 1
@@ -148,12 +149,7 @@ echo "check: a sphere moving up into the strip pushes it 0.25 m up, on 1 and 2 r
 # 0.3 m from below in four steps: between solves it moves as far as CCD allows, with the strip's
 # vertices in its way pushed ahead of it, and every step is solved until it has arrived.
 sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/contact/sphere_lift.yaml" >push.yaml
-for ranks in 1 2; do
-  rc=0
-  timeout 300 mpiexec --oversubscribe -n $ranks "$MLSHELL" push.yaml -mlshell_quiet \
-    -mlshell_output_dir "out/push$ranks" >"push$ranks.log" 2>&1 || rc=$?
-  [[ $rc -eq 0 ]] || die "push on $ranks rank(s): exit $rc: $(tail -5 "push$ranks.log")"
-done
+for ranks in 1 2; do run_scene push.yaml "push$ranks" $ranks; done
 $PY - <<'PY' || die "push: outputs"
 import json
 from pathlib import Path
@@ -207,10 +203,7 @@ PY
 echo "check: the other contact examples run their first steps on 2 ranks, with no intersection"
 for scene in balloon_press balloon_in_corner cloth_on_sphere; do
   sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/contact/$scene.yaml" >"$scene.yaml"
-  rc=0
-  timeout 300 mpiexec --oversubscribe -n 2 "$MLSHELL" "$scene.yaml" -mlshell_quiet \
-    -mlshell_steps 2 -mlshell_output_dir "out/$scene" >"$scene.log" 2>&1 || rc=$?
-  [[ $rc -eq 0 ]] || die "$scene: exit $rc: $(tail -5 "$scene.log")"
+  run_scene "$scene.yaml" "$scene" 2 -mlshell_steps 2
   $PY - "out/$scene" <<'PY' || die "$scene: summary"
 import json, sys
 s = json.load(open(sys.argv[1] + "/summary.json"))
@@ -224,12 +217,7 @@ cp "$SRC/examples/contact/twist-options.yaml" .
 sed -e 's/faces: \[16, 16\]/faces: [12, 12]/' -e 's/dt: 0.1, steps: 150/dt: 0.5, steps: 16/' \
   "$SRC/examples/contact/twist.yaml" >twist.yaml
 grep -q "steps: 16" twist.yaml || die "twist.yaml: $(cat twist.yaml)"
-for ranks in 1 2; do
-  rc=0
-  timeout 300 mpiexec --oversubscribe -n $ranks "$MLSHELL" twist.yaml -mlshell_quiet \
-    -mlshell_output_dir "out/twist$ranks" >"twist$ranks.log" 2>&1 || rc=$?
-  [[ $rc -eq 0 ]] || die "twist, $ranks rank(s): exit $rc: $(tail -5 "twist$ranks.log")"
-done
+for ranks in 1 2; do run_scene twist.yaml "twist$ranks" $ranks; done
 $PY - <<'PY' || die "twist"
 import csv, json
 from pathlib import Path
