@@ -20,4 +20,15 @@ void project_to_psd(Eigen::Ref<Eigen::MatrixXd> H);
 void project_to_psd(Eigen::Matrix<double, 9, 9>& H);
 void project_to_psd(Eigen::Matrix<double, 12, 12>& H);
 
+/// The same P(½ (H + Hᵀ)) for the Hessian of an energy of K = 3, 4 or 6 points that sees only
+/// their differences (a triangle's membrane, a hinge, a mid-edge element, a contact pair), so that
+/// the three common translations t are in its null space, H t = 0. The eigen-decomposition then
+/// runs on the 3(K − 1) motions orthogonal to them: 12 × 12 becomes 9 × 9, about 2.4× fewer
+/// operations. The result equals project_to_psd's to round-off, and where H has no negative
+/// eigenvalue on them it is ½ (H + Hᵀ) bit for bit. An H that moves under translations by more than
+/// round-off (10⁻⁸ K of its largest entry) is projected whole, as project_to_psd does.
+void project_stencil_hessian_to_psd(Eigen::Matrix<double, 9, 9>& H);
+void project_stencil_hessian_to_psd(Eigen::Matrix<double, 12, 12>& H);
+void project_stencil_hessian_to_psd(Eigen::Matrix<double, 18, 18>& H);
+
 }  // namespace mlshell

@@ -56,7 +56,8 @@ struct ObjCage {
 /// triangle-mesh shell (paper 2) instead of a subdivision cage.
 ///   rectangle  size: [w, h], faces: [nx, ny] (structured; diagonals: alternating | uniform)
 ///              or edge_length: l (unstructured Delaunay), origin: [x, y]
-///   cylinder   radius, length, faces: [around, along]   (axis z, two boundary loops)
+///   cylinder   radius, length, faces: [around, along]   (axis z, two boundary loops),
+///              imperfection: {amplitude, waves: [k, m]}
 ///   dome       radius, opening_angle (rad, polar angle of the rim), rings   (apex on +z)
 ///   sphere     radius, subdivisions (icosphere: 20·4^s triangles, closed)
 struct TriangleMeshSpec {
@@ -73,6 +74,10 @@ struct TriangleMeshSpec {
   double relief_amplitude = 0.0;
   std::array<int, 2> relief_bumps{1, 1};
   double radius = 1.0, length = 1.0, opening_angle = 1.0;
+  /// cylinder: an imperfect wall, the radius r + amplitude cos(k θ) sin(m π z / length), with
+  /// waves = [k around, m along]: round ends, and a buckling branch that round-off does not pick.
+  double imperfection_amplitude = 0.0;
+  std::array<int, 2> imperfection_waves{4, 1};
   int rings = 8, subdivisions = 3;
 };
 

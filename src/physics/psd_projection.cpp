@@ -2,6 +2,8 @@
 #include "mlshell/psd_projection.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace mlshell {
@@ -42,7 +44,107 @@ void project(Map H) {
   }
 }
 
+// Helmert's orthonormal basis of the K-vectors whose entries sum to zero, times I₃: the
+// 3K × 3(K − 1) matrix T whose columns span every motion of K points but their common
+// translation. Column (j, c), j = 1..K−1, moves points 0..j−1 by s_j and point j by −j s_j along
+// axis c, s_j = 1/√(j(j+1)). Its products are prefix and suffix sums, O(K) per row, not O(K²).
+template <int K>
+double helmert(int j) {
+  return 1.0 / std::sqrt(static_cast<double>(j) * (j + 1));
+}
+
+/// A T for the 3K-row A: the columns (j, c) are s_j (Σ_{p<j} A_(p,c) − j A_(j,c)).
+template <int K, class Matrix>
+Eigen::Matrix<double, Matrix::RowsAtCompileTime, 3 * (K - 1)> times_t(const Matrix& A) {
+  Eigen::Matrix<double, Matrix::RowsAtCompileTime, 3 * (K - 1)> out;
+  for (int c = 0; c < 3; ++c) {
+    auto prefix = A.col(c).eval();
+    for (int j = 1; j < K; ++j) {
+      out.col(3 * (j - 1) + c) = helmert<K>(j) * (prefix - j * A.col(3 * j + c));
+      prefix += A.col(3 * j + c);
+    }
+  }
+  return out;
+}
+
+/// T V for the 3(K − 1)-row V: point p, axis c gets Σ_{j>p} s_j V_(j,c) − p s_p V_(p,c).
+template <int K, class Matrix>
+Eigen::Matrix<double, 3 * K, Matrix::ColsAtCompileTime> t_times(const Matrix& V) {
+  Eigen::Matrix<double, 3 * K, Matrix::ColsAtCompileTime> out;
+  for (int c = 0; c < 3; ++c) {
+    Eigen::Matrix<double, 1, Matrix::ColsAtCompileTime> suffix =
+        Eigen::Matrix<double, 1, Matrix::ColsAtCompileTime>::Zero();
+    for (int p = K - 1; p >= 0; --p) {
+      out.row(3 * p + c) = suffix;
+      if (p >= 1) {
+        out.row(3 * p + c) -= p * helmert<K>(p) * V.row(3 * (p - 1) + c);
+        suffix += helmert<K>(p) * V.row(3 * (p - 1) + c);
+      }
+    }
+  }
+  return out;
+}
+
+// P(S) of S = ½ (H + Hᵀ) where S t = 0 for the three translations t: S = T R Tᵀ with
+// R = Tᵀ S T, and P(S) = T P(R) Tᵀ. The eigen-decomposition is 3(K − 1)-square, not 3K-square.
+// As in project(), the smaller of the negative and positive parts is the one written.
+template <int K>
+void project_translation_free(Eigen::Matrix<double, 3 * K, 3 * K>& H) {
+  constexpr int N = 3 * K, M = 3 * (K - 1);
+  using Matrix = Eigen::Matrix<double, N, N>;
+  if (!H.allFinite()) return;
+  const Matrix S = 0.5 * (H + H.transpose());
+  // An energy that sees more than its points' differences (a clamp's fixed target, say) has
+  // translations outside the null space, by far more than round-off: project it whole.
+  const double scale = S.cwiseAbs().maxCoeff();
+  for (int c = 0; c < 3; ++c) {
+    double moved = 0.0;
+    for (int i = 0; i < N; ++i) {
+      double sum = 0.0;
+      for (int p = 0; p < K; ++p) sum += S(i, 3 * p + c);
+      moved = std::max(moved, std::abs(sum));
+    }
+    if (moved > 1e-8 * K * scale) {
+      project<Matrix, Matrix&>(H);
+      return;
+    }
+  }
+  const Eigen::Matrix<double, N, M> ST = times_t<K>(S);
+  const Eigen::Matrix<double, M, M> R = times_t<K>(Eigen::Matrix<double, M, N>(ST.transpose()));
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, M, M>> eig(R);
+  if (eig.info() != Eigen::Success) return;
+  const auto& lambda = eig.eigenvalues();  // ascending
+  int negative = 0;
+  while (negative < M && lambda[negative] < 0.0) ++negative;
+  if (negative == 0) {
+    H = S;
+    return;
+  }
+  int positive = 0;
+  for (int i = negative; i < M; ++i) positive += lambda[i] > 0.0;
+  const Eigen::Matrix<double, N, M> W = t_times<K>(eig.eigenvectors());  // S's eigenvectors
+  Matrix P = negative <= positive ? S : Matrix::Zero();
+  if (negative <= positive)
+    for (int i = 0; i < negative; ++i) P.noalias() -= lambda[i] * W.col(i) * W.col(i).transpose();
+  else
+    for (int i = M - positive; i < M; ++i)
+      P.noalias() += lambda[i] * W.col(i) * W.col(i).transpose();
+  H = 0.5 * (P + P.transpose());
+}
+
 }  // namespace
+
+void project_stencil_hessian_to_psd(Eigen::Matrix<double, 9, 9>& H) {
+  project_translation_free<3>(H);
+}
+
+void project_stencil_hessian_to_psd(Eigen::Matrix<double, 12, 12>& H) {
+  project_translation_free<4>(H);
+}
+
+void project_stencil_hessian_to_psd(Eigen::Matrix<double, 18, 18>& H) {
+  project_translation_free<6>(H);
+}
 
 void project_to_psd(Eigen::Ref<Eigen::MatrixXd> H) {
   if (H.rows() != H.cols()) throw std::invalid_argument("project_to_psd: matrix is not square");

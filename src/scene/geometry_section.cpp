@@ -146,7 +146,7 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
                "gives more than ~10 million triangles");
     }
   } else if (kind == "cylinder") {
-    mesh.expect_keys({"generator", "radius", "length", "faces"});
+    mesh.expect_keys({"generator", "radius", "length", "faces", "imperfection"});
     spec.generator = G::kCylinder;
     spec.faces = {32, 16};
     positive("radius", spec.radius);
@@ -154,6 +154,20 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
     if (const auto faces = mesh.find("faces")) spec.faces = read_faces(*faces);
     if (const auto faces = mesh.find("faces"))
       faces->check(spec.faces[0] >= 3, "needs at least 3 faces around", "[around >= 3, along]");
+    if (const auto imperfection = mesh.find("imperfection")) {
+      imperfection->expect_keys({"amplitude", "waves"});
+      const Field a = imperfection->require("amplitude", "a radial offset in m, nonzero");
+      spec.imperfection_amplitude = a.number();
+      a.check(spec.imperfection_amplitude != 0.0 &&
+                  std::abs(spec.imperfection_amplitude) < 0.5 * spec.radius,
+              "must be nonzero and less than half the radius");
+      if (const auto waves = imperfection->find("waves")) {
+        const std::vector<Field> n = waves->items(2, "[k, m]: waves around and along");
+        spec.imperfection_waves = {n[0].integer_in(0, 10000), n[1].integer_in(0, 10000)};
+        waves->check(spec.imperfection_waves[0] > 0 || spec.imperfection_waves[1] > 0,
+                     "needs a wave around or along", "[k, m], not both 0");
+      }
+    }
   } else if (kind == "dome") {
     mesh.expect_keys({"generator", "radius", "opening_angle", "rings"});
     spec.generator = G::kDome;

@@ -131,8 +131,18 @@ TriangleMesh build_triangle_mesh(const TriangleMeshSpec& s) {
         }
       return mesh;
     }
-    case G::kCylinder:
-      return make_cylinder(s.radius, s.length, s.faces[0], s.faces[1]);
+    case G::kCylinder: {
+      TriangleMesh mesh = make_cylinder(s.radius, s.length, s.faces[0], s.faces[1]);
+      if (s.imperfection_amplitude != 0.0)
+        for (Point3& X : mesh.points) {
+          const double theta = std::atan2(X.y(), X.x());
+          const double dr = s.imperfection_amplitude * std::cos(s.imperfection_waves[0] * theta) *
+                            std::sin(std::numbers::pi * s.imperfection_waves[1] * X.z() / s.length);
+          X.x() *= 1.0 + dr / s.radius;
+          X.y() *= 1.0 + dr / s.radius;
+        }
+      return mesh;
+    }
     case G::kDome:
       return make_spherical_cap(s.radius, s.opening_angle, s.rings);
     case G::kSphere:

@@ -20,7 +20,12 @@ double barrier_pair_energy(double kappa, const ContactBarrier& barrier, double d
   if (grad) *grad = kappa * db * grad_d;
   if (hess) {
     *hess = kappa * (barrier.second_derivative(d) * grad_d * grad_d.transpose() + db * hess_d);
-    if (project) project_to_psd(*hess);
+    if (project) {
+      if constexpr (N == 6)
+        project_to_psd(*hess);
+      else
+        project_stencil_hessian_to_psd(*hess);  // distances see only differences
+    }
   }
   return kappa * b;
 }
@@ -45,7 +50,7 @@ double mollified_barrier_pair_energy(double kappa, const ContactBarrier& barrier
     *hess =
         kappa * (b * hess_m + db * (cross + cross.transpose()) +
                  m * (barrier.second_derivative(d) * grad_d * grad_d.transpose() + db * hess_d));
-    if (project) project_to_psd(*hess);
+    if (project) project_stencil_hessian_to_psd(*hess);
   }
   return kappa * m * b;
 }

@@ -51,7 +51,7 @@ PetscErrorCode add_midedge_element(const MidedgeRest& rest, const std::array<Eig
   if (n == 6) {
     if (grad) add_local_gradient(dofs, g.data(), *grad);
     if (hess) {
-      if (project) project_to_psd(H);
+      if (project) project_stencil_hessian_to_psd(H);
       PetscCall(add_local_hessian(hess, dofs, H.data()));  // symmetric: row = column major
     }
     PetscFunctionReturn(0);

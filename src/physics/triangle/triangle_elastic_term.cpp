@@ -90,7 +90,7 @@ PetscErrorCode TriangleElasticTerm::add(const std::vector<double>& u, Compensate
     nodes.assign(m.nodes.begin(), m.nodes.end());
     if (grad) add_local_gradient(nodes, g9.data(), *grad);
     if (hess) {
-      if (projects_hessian()) project_to_psd(H9);
+      if (projects_hessian()) project_stencil_hessian_to_psd(H9);
       PetscCall(add_local_hessian(hess, nodes, H9.data()));  // symmetric: row = column major
     }
   }
@@ -111,7 +111,7 @@ PetscErrorCode TriangleElasticTerm::add(const std::vector<double>& u, Compensate
     nodes.assign(b.nodes.begin(), b.nodes.end());
     if (grad) add_local_gradient(nodes, g12.data(), *grad);
     if (hess) {
-      if (projects_hessian()) project_to_psd(H12);
+      if (projects_hessian()) project_stencil_hessian_to_psd(H12);
       PetscCall(add_local_hessian(hess, nodes, H12.data()));
     }
   }

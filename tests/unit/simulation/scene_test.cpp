@@ -971,7 +971,7 @@ TEST(SceneFormatHelp, IsWrappedAndOfReferenceLength) {
     EXPECT_EQ(line.find('\t'), std::string::npos) << line;
   }
   EXPECT_GE(lines, 80);
-  EXPECT_LE(lines, 130);
+  EXPECT_LE(lines, 135);
 }
 
 TEST(SceneFormatHelp, NamesEveryKey) {

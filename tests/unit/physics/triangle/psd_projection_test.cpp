@@ -168,3 +168,82 @@ TEST(PsdProjection, ProjectsACompressedMembraneHessian) {
   project_to_psd(P);
   expect_projection(H, P);
 }
+
+namespace {
+
+// A symmetric matrix on K points with the three translations in its null space: random in the
+// 3(K − 1) motions orthogonal to them, shifted so that it is indefinite.
+template <int K>
+Eigen::Matrix<double, 3 * K, 3 * K> random_translation_free(std::mt19937& rng, double shift) {
+  constexpr int N = 3 * K;
+  using Matrix = Eigen::Matrix<double, N, N>;
+  Matrix Q;
+  // The projector onto the complement of the translations: I − (1/K) Σ_c t_c t_cᵀ.
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) Q(i, j) = (i == j) - (i % 3 == j % 3 ? 1.0 / K : 0.0);
+  const Matrix R = random_symmetric<Matrix>(rng, N) - shift * Matrix::Identity();
+  return Q * R * Q;
+}
+
+template <int K>
+void expect_stencil_projection_matches(std::mt19937& rng, double shift) {
+  using Matrix = Eigen::Matrix<double, 3 * K, 3 * K>;
+  const Matrix H = random_translation_free<K>(rng, shift);
+  Matrix full = H, stencil = H;
+  project_to_psd(full);
+  project_stencil_hessian_to_psd(stencil);
+  expect_projection(H, stencil);
+  EXPECT_LE((stencil - full).norm(), 1e-12 * H.norm()) << "K = " << K << ", shift " << shift;
+}
+
+}  // namespace
+
+// project_stencil_hessian_to_psd works on the motions orthogonal to the translations only; where
+// they are in H's null space it equals the full projection, for every stencil size and both of
+// its branches (a few negative eigenvalues, or mostly negative ones).
+TEST(PsdProjection, StencilHessiansProjectOnTheMotionsThatAreNotTranslations) {
+  std::mt19937 rng(73);
+  for (int trial = 0; trial < 10; ++trial)
+    for (double shift : {0.0, 3.0}) {
+      expect_stencil_projection_matches<3>(rng, shift);
+      expect_stencil_projection_matches<4>(rng, shift);
+      expect_stencil_projection_matches<6>(rng, shift);
+    }
+  // A real one: the compressed membrane's Hessian (translation-free by construction).
+  const TriangleRest rest = TriangleRest::from(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                                               Eigen::Vector3d(0.3, 0.9, 0));
+  Matrix9 H;
+  neo_hookean_membrane(rest, {1.0, 1.0, 0.1}, Eigen::Vector3d(0.2, -0.1, 0.4),
+                       Eigen::Vector3d(0.8, -0.1, 0.4), Eigen::Vector3d(0.38, 0.44, 0.4), nullptr,
+                       &H);
+  Matrix9 full = H, stencil = H;
+  project_to_psd(full);
+  project_stencil_hessian_to_psd(stencil);
+  expect_projection(H, stencil);
+  EXPECT_LE((stencil - full).norm(), 1e-12 * H.norm());
+}
+
+TEST(PsdProjection, StencilProjectionKeepsPsdInputAndProjectsOtherMatricesWhole) {
+  std::mt19937 rng(79);
+  // PSD on the complement: returned bit for bit.
+  Eigen::Matrix<double, 12, 12> H = random_translation_free<4>(rng, 0.0);
+  H = (H * H).eval();
+  H = (0.5 * (H + H.transpose())).eval();  // .eval(): H is on both sides
+  Eigen::Matrix<double, 12, 12> P = H;
+  project_stencil_hessian_to_psd(P);
+  EXPECT_EQ(P, H);
+  // Translations not in the null space (an energy tied to a fixed point): the full projection,
+  // bit for bit, not a projection that silently drops the translations.
+  const Eigen::Matrix<double, 12, 12> A = random_symmetric<Eigen::Matrix<double, 12, 12>>(rng, 12);
+  Eigen::Matrix<double, 12, 12> full = A, stencil = A;
+  project_to_psd(full);
+  project_stencil_hessian_to_psd(stencil);
+  EXPECT_EQ(stencil, full);
+  expect_projection(A, stencil);
+  // Non-finite entries: left as they were.
+  Eigen::Matrix<double, 9, 9> F = -Eigen::Matrix<double, 9, 9>::Identity();
+  F(4, 4) = std::numeric_limits<double>::infinity();
+  const Eigen::Matrix<double, 9, 9> F0 = F;
+  project_stencil_hessian_to_psd(F);
+  EXPECT_EQ(F, F0);
+}
