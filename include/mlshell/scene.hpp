@@ -57,7 +57,7 @@ struct ObjCage {
 ///   rectangle  size: [w, h], faces: [nx, ny] (structured; diagonals: alternating | uniform)
 ///              or edge_length: l (unstructured Delaunay), origin: [x, y]
 ///   cylinder   radius, length, faces: [around, along]   (axis z, two boundary loops),
-///              imperfection: {amplitude, waves: [k, m]}
+///              imperfection: {amplitude, waves: [k, m], phase} or a list of them
 ///   dome       radius, opening_angle (rad, polar angle of the rim), rings   (apex on +z)
 ///   sphere     radius, subdivisions (icosphere: 20·4^s triangles, closed)
 struct TriangleMeshSpec {
@@ -74,10 +74,15 @@ struct TriangleMeshSpec {
   double relief_amplitude = 0.0;
   std::array<int, 2> relief_bumps{1, 1};
   double radius = 1.0, length = 1.0, opening_angle = 1.0;
-  /// cylinder: an imperfect wall, the radius r + amplitude cos(k θ) sin(m π z / length), with
-  /// waves = [k around, m along]: round ends, and a buckling branch that round-off does not pick.
-  double imperfection_amplitude = 0.0;
-  std::array<int, 2> imperfection_waves{4, 1};
+  /// cylinder: an imperfect wall, the radius r + Σ amplitude cos(k θ + phase) sin(m π z / length)
+  /// over its modes, waves = [k around, m along]: round ends, and (with two modes or more, which
+  /// leave no mirror symmetry) a buckling branch that the scene picks, not round-off.
+  struct WallMode {
+    double amplitude = 0.0;
+    std::array<int, 2> waves{4, 1};
+    double phase = 0.0;
+  };
+  std::vector<WallMode> imperfection;
   int rings = 8, subdivisions = 3;
 };
 

@@ -155,18 +155,29 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
     if (const auto faces = mesh.find("faces"))
       faces->check(spec.faces[0] >= 3, "needs at least 3 faces around", "[around >= 3, along]");
     if (const auto imperfection = mesh.find("imperfection")) {
-      imperfection->expect_keys({"amplitude", "waves"});
-      const Field a = imperfection->require("amplitude", "a radial offset in m, nonzero");
-      spec.imperfection_amplitude = a.number();
-      a.check(spec.imperfection_amplitude != 0.0 &&
-                  std::abs(spec.imperfection_amplitude) < 0.5 * spec.radius,
-              "must be nonzero and less than half the radius");
-      if (const auto waves = imperfection->find("waves")) {
-        const std::vector<Field> n = waves->items(2, "[k, m]: waves around and along");
-        spec.imperfection_waves = {n[0].integer_in(0, 10000), n[1].integer_in(0, 10000)};
-        waves->check(spec.imperfection_waves[0] > 0 || spec.imperfection_waves[1] > 0,
-                     "needs a wave around or along", "[k, m], not both 0");
+      const std::vector<Field> modes =
+          imperfection->is_sequence() ? imperfection->items() : std::vector{*imperfection};
+      imperfection->check(!modes.empty(), "needs a mode",
+                          "{amplitude: a, waves: [k, m], phase: p} or a list of them");
+      double sum = 0.0;
+      for (const Field& mode : modes) {
+        mode.expect_keys({"amplitude", "waves", "phase"});
+        TriangleMeshSpec::WallMode m;
+        const Field a = mode.require("amplitude", "a radial offset in m, nonzero");
+        m.amplitude = a.number();
+        a.check(m.amplitude != 0.0, "must be nonzero");
+        sum += std::abs(m.amplitude);
+        if (const auto waves = mode.find("waves")) {
+          const std::vector<Field> n = waves->items(2, "[k, m]: waves around and along");
+          m.waves = {n[0].integer_in(0, 10000), n[1].integer_in(0, 10000)};
+          waves->check(m.waves[0] > 0 || m.waves[1] > 0, "needs a wave around or along",
+                       "[k, m], not both 0");
+        }
+        if (const auto phase = mode.find("phase")) m.phase = phase->number();
+        spec.imperfection.push_back(m);
       }
+      imperfection->check(sum < 0.5 * spec.radius,
+                          "its amplitudes add up to half the radius or more");
     }
   } else if (kind == "dome") {
     mesh.expect_keys({"generator", "radius", "opening_angle", "rings"});

@@ -27,7 +27,8 @@ geometry:                    required
         edge_length: l      an unstructured Delaunay mesh with edges of about l (<= w/2, h/2)
         relief: {amplitude: a, bumps: [bx, by]}   embossed: z = a sin^2(pi bx u) sin^2(pi by v)
     {generator: cylinder, radius: r, length: l, faces: [around >= 3, along]}   open, axis z
-        imperfection: {amplitude: a, waves: [k, m]}   radius r + a cos(k theta) sin(m pi z/l)
+        imperfection: {amplitude: a, waves: [k, m], phase: p} or a list: radius r + the sum
+                      of a cos(k theta + p) sin(m pi z/l); two modes leave no mirror symmetry
     {generator: dome, radius: r, opening_angle: a, rings: n}   apex on +z, rim at a in (0, pi)
     {generator: sphere, radius: r, subdivisions: s}   closed icosphere, s in 0..8
   hierarchy:                 triangle meshes, for -tao_type rmtr: coarser levels by edge collapse

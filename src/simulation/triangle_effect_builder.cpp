@@ -133,14 +133,15 @@ TriangleMesh build_triangle_mesh(const TriangleMeshSpec& s) {
     }
     case G::kCylinder: {
       TriangleMesh mesh = make_cylinder(s.radius, s.length, s.faces[0], s.faces[1]);
-      if (s.imperfection_amplitude != 0.0)
-        for (Point3& X : mesh.points) {
-          const double theta = std::atan2(X.y(), X.x());
-          const double dr = s.imperfection_amplitude * std::cos(s.imperfection_waves[0] * theta) *
-                            std::sin(std::numbers::pi * s.imperfection_waves[1] * X.z() / s.length);
-          X.x() *= 1.0 + dr / s.radius;
-          X.y() *= 1.0 + dr / s.radius;
-        }
+      for (Point3& X : mesh.points) {
+        const double theta = std::atan2(X.y(), X.x());
+        double dr = 0.0;
+        for (const TriangleMeshSpec::WallMode& m : s.imperfection)
+          dr += m.amplitude * std::cos(m.waves[0] * theta + m.phase) *
+                std::sin(std::numbers::pi * m.waves[1] * X.z() / s.length);
+        X.x() *= 1.0 + dr / s.radius;
+        X.y() *= 1.0 + dr / s.radius;
+      }
       return mesh;
     }
     case G::kDome:

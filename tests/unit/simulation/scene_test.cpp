@@ -724,6 +724,27 @@ TEST(SceneErrors, InlineDefects) {
        }),
        1,
        {"geometry.cage.faces[0]: must be in 1..100000; got '0'"}},
+      {"imperfection_zero_amplitude",
+       with([](SceneText& t) {
+         t.geometry =
+             "geometry: {mesh: {generator: cylinder, radius: 1, imperfection: {amplitude: 0}}}\n";
+       }),
+       1,
+       {"geometry.mesh.imperfection.amplitude: must be nonzero; got '0'"}},
+      {"imperfection_too_deep",
+       with([](SceneText& t) {
+         t.geometry = "geometry:\n  mesh:\n    generator: cylinder\n    radius: 1\n"
+                      "    imperfection: [{amplitude: 0.3}, {amplitude: -0.2, phase: 1}]\n";
+       }),
+       5,
+       {"geometry.mesh.imperfection: its amplitudes add up to half the radius or more"}},
+      {"imperfection_unknown_key",
+       with([](SceneText& t) {
+         t.geometry = "geometry:\n  mesh: {generator: cylinder, imperfection: {amplitude: 0.1, "
+                      "wave: [1, 1]}}\n";
+       }),
+       2,
+       {"geometry.mesh.imperfection", "wave"}},
       {"unknown_generator",
        with([](SceneText& t) { t.geometry = "geometry: {cage: {generator: circle}}\n"; }),
        1,
