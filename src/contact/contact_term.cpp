@@ -488,19 +488,22 @@ double ContactTerm::pair_energy(const Pair& p, Vector12* grad, Matrix12* hess, b
   Vector12 gd = Vector12::Zero();
   Matrix12 hd = Matrix12::Zero();
   const bool project = projects_hessian();
+  // Most candidates of the Verlet list are beyond the barrier's reach: their distance alone
+  // decides, and only active pairs pay for its derivatives.
   if (!p.edge_edge) {
     const auto type = point_triangle_distance_type(a, b, c, d);
-    const double dist = point_triangle_distance(a, b, c, d, type, derivatives ? &gd : nullptr,
-                                                hess ? &hd : nullptr);
+    double dist = point_triangle_distance(a, b, c, d, type);
     if (dist >= barrier.activation_squared_distance()) return 0.0;
     *active = true;
+    if (derivatives)
+      dist = point_triangle_distance(a, b, c, d, type, &gd, hess ? &hd : nullptr);
     return barrier_pair_energy<12>(kappa_, barrier, dist, gd, hd, grad, hess, project);
   }
   const auto type = edge_edge_distance_type(a, b, c, d);
-  const double dist =
-      edge_edge_distance(a, b, c, d, type, derivatives ? &gd : nullptr, hess ? &hd : nullptr);
+  double dist = edge_edge_distance(a, b, c, d, type);
   if (dist >= barrier.activation_squared_distance()) return 0.0;
   *active = true;
+  if (derivatives) dist = edge_edge_distance(a, b, c, d, type, &gd, hess ? &hd : nullptr);
   const int* v = p.v.data();
   const double eps_x =
       edge_edge_mollifier_threshold(rest_[vertex_id_[v[0]]], rest_[vertex_id_[v[1]]],
