@@ -19,7 +19,7 @@ declare -A view=([plate]="--zscale 1000" [clamped_plate]="--zscale 1000"
                  [strip_over_sphere]="--elev 20 --azim=-100 --size 800 450"
                  [balloon_press]="--elev 15" [balloon_in_corner]="--elev=-12 --azim=-120"
                  [sphere_lift]="--elev 20 --azim=-100 --size 800 450" [cloth_on_sphere]="--elev 30"
-                 [can_crush]="--elev 10")
+                 [can_crush]="--elev 10" [crossed_strips]="--elev 20 --azim=-60")
 mkdir -p examples/pictures docs/pictures out/pictures
 for scene in examples/*.yaml examples/triangle/*.yaml examples/contact/*.yaml; do
   name=$(basename "$scene" .yaml)

@@ -391,11 +391,24 @@ struct SolverSpec {
   std::optional<std::filesystem::path> options_file;  ///< resolved path; command line wins
 };
 
+/// `bodies: [{name, mesh, translate, material, self_contact}]`: a further triangle-mesh shell
+/// beside geometry.mesh, with its own mesh, placement and material (the scene's by default). Its
+/// vertices are group(name), its mesh's own groups group(name/group). All bodies form one
+/// discretization; effects act on all of them unless a selection picks some.
+struct BodySpec {
+  std::string name;
+  TriangleMeshSpec mesh;
+  Vec3 translate{0.0, 0.0, 0.0};
+  MaterialSpec material;
+  std::optional<bool> self_contact;  ///< default: the contact effect's `self`
+};
+
 struct Scene {
   std::filesystem::path file;  ///< the scene file as given
   std::string name;            ///< file stem unless `name:` is given
   GeometrySpec geometry;
   MaterialSpec material;
+  std::vector<BodySpec> bodies;  ///< further shells (triangle meshes), in the file's order
   std::vector<Effect> effects;
   InitialState initial_state;
   TimeSpec time;

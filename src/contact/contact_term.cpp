@@ -59,6 +59,13 @@ ContactTerm::ContactTerm(std::string name, const TriangleMesh& shell, const Para
     throw std::invalid_argument("contact: the stiffness must be finite and >= 0");
   num_shell_points_ = shell.num_points();
   num_shell_faces_ = shell.num_triangles();
+  if (!settings_.body_of_point.empty()) {
+    if (settings_.body_of_point.size() != static_cast<std::size_t>(num_shell_points_))
+      throw std::invalid_argument("contact: body_of_point needs one body per shell point");
+    for (int b : settings_.body_of_point)
+      if (b < 0 || b >= static_cast<int>(settings_.self_contact_of_body.size()))
+        throw std::invalid_argument("contact: a body without a self_contact_of_body entry");
+  }
   std::vector<std::array<int, 3>> faces(shell.triangles.begin(), shell.triangles.end());
   rest_.assign(shell.points.begin(), shell.points.end());
   for (std::size_t k = 0; k < obstacles_.size(); ++k) {
@@ -444,6 +451,13 @@ void ContactTerm::own_pairs(const ContactCandidates& candidates, const ContactSu
                             const std::vector<int>& face_id, bool shell_shell,
                             std::vector<Pair>& out) const {
   const int rank = layout_.rank();
+  // Whether a pair of the shell points p's and q's primitives counts: always between two
+  // bodies, within one if its self-contact is on.
+  const auto counts = [&](int p, int q) {
+    if (settings_.body_of_point.empty()) return shell_shell;
+    const int a = settings_.body_of_point[p], b = settings_.body_of_point[q];
+    return a != b || settings_.self_contact_of_body[a] != 0;
+  };
   const auto mine_point = [&](int v) {
     const int l = layout_.local_of(v);
     return l >= 0 && l < layout_.num_owned_points();
@@ -452,7 +466,7 @@ void ContactTerm::own_pairs(const ContactCandidates& candidates, const ContactSu
     const int v = vertex_id[cv], f = face_id[cf];
     const bool shell_v = v < num_shell_points_, shell_f = f < num_shell_faces_;
     if (!shell_v && !shell_f) continue;
-    if (shell_v && shell_f && !shell_shell) continue;
+    if (shell_v && shell_f && !counts(v, surface_.faces[f][0])) continue;
     if (shell_v ? !mine_point(v) : layout_.face_owner(f) != rank) continue;
     const auto& t = known.faces[cf];
     out.push_back({false, {cv, t[0], t[1], t[2]}});
@@ -461,7 +475,7 @@ void ContactTerm::own_pairs(const ContactCandidates& candidates, const ContactSu
     const int a = edge_id[ca], b = edge_id[cb];
     const bool shell_a = a < num_shell_edges_, shell_b = b < num_shell_edges_;
     if (!shell_a && !shell_b) continue;
-    if (shell_a && shell_b && !shell_shell) continue;
+    if (shell_a && shell_b && !counts(surface_.edges[a][0], surface_.edges[b][0])) continue;
     const int owner_edge = shell_a ? a : b;  // edge ids are sorted: a < b
     if (edge_owner_[owner_edge] != rank) continue;
     const auto &ea = known.edges[ca], &eb = known.edges[cb];

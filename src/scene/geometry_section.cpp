@@ -96,6 +96,8 @@ decltype(GeometrySpec::cage) read_cage(const Field& cage, const std::filesystem:
 
 constexpr double kPi = 3.14159265358979323846;
 
+}  // namespace
+
 TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene_dir) {
   TriangleMeshSpec spec;
   using G = TriangleMeshSpec::Generator;
@@ -198,6 +200,8 @@ TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene
   }
   return spec;
 }
+
+namespace {
 
 HierarchySpec read_hierarchy(const Field& hierarchy) {
   hierarchy.expect_keys({"levels", "ratio", "vertices", "boundary_deviation"});

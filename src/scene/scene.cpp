@@ -199,8 +199,8 @@ SolverSpec read_solver(const Field& field, const fs::path& scene_dir) {
 Scene parse_scene(const std::filesystem::path& file) {
   using namespace scene_reading;
   const Field root = Field::document(load_document(file), file.string());
-  root.expect_keys({"name", "geometry", "material", "effects", "initial_state", "time", "probes",
-                    "output", "solver"});
+  root.expect_keys({"name", "geometry", "material", "bodies", "effects", "initial_state", "time",
+                    "probes", "output", "solver"});
   const std::filesystem::path scene_dir = file.parent_path();
 
   Scene scene;
@@ -219,6 +219,8 @@ Scene parse_scene(const std::filesystem::path& file) {
                   : "is a subdivision-shell material, but the geometry is a triangle mesh",
               triangle_material ? "clyde-orthotropic or isotropic-svk, or geometry: {mesh: {...}}"
                                 : "neo-hookean or st-venant-kirchhoff, or geometry: {cage: {...}}");
+  if (const auto bodies = root.find("bodies"))
+    scene.bodies = read_bodies(*bodies, scene, scene_dir);
   if (const auto effects = root.find("effects"))
     scene.effects = read_effects(*effects, scene.geometry, scene_dir);
   if (const auto initial = root.find("initial_state")) {

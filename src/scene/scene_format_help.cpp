@@ -55,6 +55,11 @@ material:                    required
   thickness: number          m, > 0; required (denim preset: 0.66e-3)
   density: number            area density kg/m^2, >= 0; required (denim preset: 0.4)
   thickness_points: int      Gauss points through the thickness, 1..8 (default 3)
+bodies:                      triangle meshes: a list of further shells, each
+  name: string               group(name) selects it, group(name/left) its mesh's sides, ...
+  mesh: {...}, translate: [x, y, z]   as geometry.mesh, moved into place
+  material: {...}            the scene's unless given (the same bending model)
+  self_contact: bool         its contact with itself (default: contact's self)
 effects:                     optional list of names or {name: params}; only those are simulated
   - inertia                  implicit Euler inertia; at most once
   - gravity: [gx, gy, gz]    m/s^2; bare `- gravity` means [0, 0, -9.81]; at most once

@@ -23,7 +23,13 @@ std::filesystem::path read_existing_path(const Field& field,
                                          const std::filesystem::path& scene_dir);
 
 GeometrySpec read_geometry(const Field& geometry, const std::filesystem::path& scene_dir);
+/// `geometry.mesh` (or a body's `mesh`): a generated triangle mesh or an OBJ file.
+TriangleMeshSpec read_mesh(const Field& mesh, const std::filesystem::path& scene_dir);
 MaterialSpec read_material(const Field& material);
+/// The `bodies:` list: further triangle-mesh shells beside geometry.mesh (`scene.material` and
+/// `geometry` are read already).
+std::vector<BodySpec> read_bodies(const Field& bodies, const Scene& scene,
+                                  const std::filesystem::path& scene_dir);
 
 /// What kind of selection a `where:` must be for its user.
 enum class SelectionUse { Curve, Point, CurveOrPoint };

@@ -16,6 +16,7 @@
 #include "mlshell/subdivision/level_hierarchy.hpp"
 #include "mlshell/contact/collider_motion.hpp"
 #include "mlshell/contact/contact_term.hpp"
+#include "mlshell/triangle/triangle_bodies.hpp"
 #include "mlshell/triangle/triangle_effect_builder.hpp"
 #include "mlshell/triangle/triangle_levels.hpp"
 #include "mlshell/triangle/triangle_selection.hpp"
@@ -326,7 +327,7 @@ std::shared_ptr<const DecimationHierarchy> Simulation::decimate_mesh(const Trian
 void Simulation::setup_triangles() {
   TriangleMesh mesh;
   try {
-    mesh = build_triangle_mesh(*scene_.geometry.mesh);
+    mesh = build_scene_mesh(scene_);
   } catch (const MeshError& e) {
     throw SceneError(scene_.file.string() + ": geometry.mesh: " + e.what());
   } catch (const std::invalid_argument& e) {

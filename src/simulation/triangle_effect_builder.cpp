@@ -11,6 +11,7 @@
 #include "mlshell/contact/contact_term.hpp"
 #include "mlshell/effect_builder.hpp"
 #include "mlshell/effects.hpp"
+#include "mlshell/triangle/triangle_bodies.hpp"
 #include "mlshell/triangle/triangle_effects.hpp"
 #include "mlshell/triangle/triangle_generators.hpp"
 #include "mlshell/triangle/triangle_selection.hpp"
@@ -24,14 +25,16 @@ bool owns(const ParallelLayout& layout, int vertex) {
   return local >= 0 && local < layout.num_owned_points();
 }
 
-/// Consistent nodal forces of a force per area f: f Ā_t / 3 to each vertex of each triangle.
+/// Consistent nodal forces of a force per area f: f Ā_t / 3 to each vertex of each triangle,
+/// times scale[t] if given (the area density, for gravity).
 std::vector<double> area_force(const TriangleDiscretization& disc, const ParallelLayout& layout,
-                               const Vec3& f) {
+                               const Vec3& f, const std::vector<double>* scale = nullptr) {
   std::vector<double> force(3 * layout.num_local_points(), 0.0);
   const auto& X = disc.points();
   for (int e : layout.local_elements()) {
     const Triangle& t = disc.mesh().triangles[e];
-    const double area = 0.5 * (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]).norm();
+    const double area = 0.5 * (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]).norm() *
+                        (scale ? (*scale)[e] : 1.0);
     for (int v : t)
       for (int c = 0; c < 3; ++c) force[3 * layout.local_of(v) + c] += f[c] * area / 3.0;
   }
@@ -64,8 +67,8 @@ std::vector<int> curve_vertices(const TriangleDiscretization& disc, const Where&
 std::unique_ptr<ContactTerm> build_contact_term(const Scene& scene, const ContactEffect& c,
                                                 const TriangleDiscretization& disc,
                                                 const ParallelLayout& layout,
-                                                double shell_thickness,
-                                                double membrane_stiffness) {
+                                                const TriangleBodies& bodies) {
+  const double membrane_stiffness = bodies.max_membrane_stiffness();
   const TriangleMesh& mesh = disc.mesh();
   Point3 lo = Point3::Constant(INFINITY), hi = Point3::Constant(-INFINITY);
   for (const Point3& X : mesh.points) lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
@@ -77,18 +80,30 @@ std::unique_ptr<ContactTerm> build_contact_term(const Scene& scene, const Contac
   }
   const double diagonal = (hi - lo).norm(), edge_length = edges / (3.0 * mesh.num_triangles());
   ContactSettings settings;
-  settings.barrier = ContactBarrier::from(c.thickness.value_or(shell_thickness),
+  // Several bodies: the mid-surfaces keep the thickest body's thickness apart.
+  settings.barrier = ContactBarrier::from(c.thickness.value_or(bodies.max_thickness()),
                                           c.gap.value_or(1e-3 * diagonal));
   settings.self_contact = c.self;
+  settings.body_of_point = bodies.of_point;
+  settings.self_contact_of_body.assign(1, c.self);
+  for (const BodySpec& b : scene.bodies)
+    settings.self_contact_of_body.push_back(b.self_contact.value_or(c.self));
   settings.stiffness = c.stiffness.value_or(0.0);
-  settings.average_mass = scene.material.density * area / mesh.num_points();
+  double mass = 0.0;
+  for (int f = 0; f < mesh.num_triangles(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    const Point3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &d = mesh.points[t[2]];
+    mass += bodies.materials[bodies.of_face[f]]->density * 0.5 * (b - a).cross(d - a).norm();
+  }
+  settings.average_mass = mass / mesh.num_points();
   settings.bbox_diagonal = diagonal;
   // The force per vertex: the distributed loads' share, at least that of a membrane strained
   // by 10⁻⁴ ĝ/ℓ over an edge (for scenes driven by motions alone).
   double per_area = 0.0;
   for (const Effect& e : scene.effects) {
     if (const auto* g = std::get_if<GravityEffect>(&e))
-      per_area += scene.material.density * std::hypot(g->acceleration[0], g->acceleration[1], g->acceleration[2]);
+      per_area += bodies.max_area_density() *
+                  std::hypot(g->acceleration[0], g->acceleration[1], g->acceleration[2]);
     else if (const auto* s = std::get_if<SurfaceLoadEffect>(&e))
       per_area += std::hypot(s->force_per_area[0], s->force_per_area[1], s->force_per_area[2]);
     else if (const auto* p = std::get_if<PressureEffect>(&e))
@@ -156,18 +171,13 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
                                                      const TriangleDiscretization& disc,
                                                      const ParallelLayout& layout,
                                                      const CageFrame& frame, double penalty_h) {
-  const auto& material = std::get<TriangleMaterial>(scene.material.model);
-  TriangleShellParameters params;
-  params.membrane = material.neo_hookean ? TriangleShellParameters::Membrane::kNeoHookean
-                                         : TriangleShellParameters::Membrane::kStVenantKirchhoff;
-  params.bending = material.midedge_bending ? TriangleShellParameters::Bending::kMidedge
-                                            : TriangleShellParameters::Bending::kHinge;
-  params.youngs_modulus = material.youngs_modulus;
-  params.poisson_ratio = material.poisson_ratio;
-  params.thickness = scene.material.thickness;
+  const TriangleBodies bodies = TriangleBodies::of(scene, disc.mesh());
+  std::vector<TriangleShellParameters> body_params;
+  for (int b = 0; b < bodies.size(); ++b) body_params.push_back(bodies.parameters(b));
   auto problem = std::make_unique<LevelProblem>(layout);
-  problem->add_term(std::make_unique<TriangleElasticTerm>(disc, layout, params));
-  const double rho = scene.material.density;  // area density ρτ
+  problem->add_term(
+      std::make_unique<TriangleElasticTerm>(disc, layout, body_params, bodies.of_face));
+  const std::vector<double> rho = bodies.face_area_density();  // area density ρτ per face
   if (scene.time.quasistatic())
     problem->add_term(std::make_unique<TriangleInertiaTerm>(disc, layout, rho,
                                                             scene.time.proximal_step, "proximal"));
@@ -175,16 +185,15 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
   const double h = penalty_h > 0.0 ? penalty_h : disc.mesh_size();
   Point3 lo = Point3::Constant(INFINITY), hi = Point3::Constant(-INFINITY);
   for (const Point3& X : disc.points()) lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
-  const PenaltyScale scale{PenaltyScale::membrane_stiffness_of(scene.material),
-                           (hi - lo).maxCoeff()};
-  const double k = hinge_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
+  // The penalties hold the stiffest body.
+  const PenaltyScale scale{bodies.max_membrane_stiffness(), (hi - lo).maxCoeff()};
   const int nlocal = layout.num_local_points();
   add_effect_terms(scene, *problem, "", [&](const Effect& effect, const std::string& name) {
     if (std::holds_alternative<InertiaEffect>(effect)) {
       problem->add_term(std::make_unique<TriangleInertiaTerm>(disc, layout, rho, scene.time.dt));
     } else if (const auto* g = std::get_if<GravityEffect>(&effect)) {
-      const Vec3 f{rho * g->acceleration[0], rho * g->acceleration[1], rho * g->acceleration[2]};
-      problem->add_term(std::make_unique<LinearLoadTerm>(name, area_force(disc, layout, f), 0.0));
+      problem->add_term(std::make_unique<LinearLoadTerm>(
+          name, area_force(disc, layout, g->acceleration, &rho), 0.0));
     } else if (const auto* s = std::get_if<SurfaceLoadEffect>(&effect)) {
       problem->add_term(std::make_unique<LinearLoadTerm>(
           name, area_force(disc, layout, s->force_per_area), s->ramp ? ramp_time : 0.0));
@@ -228,6 +237,17 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
         throw SceneError("where '" + c->where.text +
                          "': a clamp needs boundary edges (two neighbouring selected boundary "
                          "vertices)");
+      // The slope is held with the stiffness of the clamped body's own bending.
+      const int body = bodies.of_point[edges.front()[0]];
+      for (const auto& edge : edges)
+        if (bodies.of_point[edge[0]] != body)
+          throw SceneError("where '" + c->where.text + "': a clamp holds the edges of one body; " +
+                           "this selection has edges of '" + bodies.names[body] + "' and '" +
+                           bodies.names[bodies.of_point[edge[0]]] +
+                           "' (give each body a clamp of its own)");
+      const TriangleShellParameters& params = body_params[body];
+      const double k =
+          hinge_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
       std::vector<PenaltySample> samples;
       for (const auto& [v, w] : vertex_weights(disc, layout, vertices))
         samples.push_back({{layout.local_of(v)}, {1.0}, {}, beta * w, 0.0, disc.points()[v]});
@@ -268,8 +288,7 @@ std::unique_ptr<LevelProblem> build_triangle_problem(const Scene& scene,
       }
       problem->add_term(std::move(term));
     } else if (const auto* c = std::get_if<ContactEffect>(&effect)) {
-      problem->add_term(build_contact_term(scene, *c, disc, layout, params.thickness,
-                                           scale.membrane_stiffness));
+      problem->add_term(build_contact_term(scene, *c, disc, layout, bodies));
     }  // colliders: part of the contact term
   });
   return problem;

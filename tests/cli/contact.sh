@@ -9,8 +9,8 @@
 # ranks alike (and under implicit Euler), and pressing it into a plane above stops the run (the
 # sphere cannot arrive); the other contact examples run their first two steps; a coarse twist
 # winds a rope whose tension raises the barrier's stiffness past IPC's cap, on 1 and 2 ranks
-# alike; a coarse crushed can folds alike on 1 and 2 ranks; and bad contact input exits 2
-# naming the file and key.
+# alike; two bodies (crossed strips) and a coarse crushed can end alike on 1 and 2 ranks;
+# and bad contact input exits 2 naming the file and key.
 #
 # usage: bash contact.sh MLSHELL SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -240,6 +240,31 @@ for name in ("twist1", "twist2"):
 a, b = final("twist1"), final("twist2")
 gap = max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v))
 assert len(a) == len(b) == 169 and gap < 1e-5, gap  # |g| < 1e-5 N: the same state
+PY
+
+echo "check: two bodies (crossed strips), each with its own material, on 1 and 2 ranks alike"
+sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/contact/crossed_strips.yaml" >crossed.yaml
+for ranks in 1 2; do run_scene crossed.yaml "crossed$ranks" $ranks; done
+$PY - <<'PY' || die "crossed strips"
+import json
+from pathlib import Path
+
+def final(name):
+    obj = sorted(Path(f"out/{name}").glob("frame_*.obj"))[-1].read_text().splitlines()
+    return [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
+
+for name in ("crossed1", "crossed2"):
+    s = json.load(open(f"out/{name}/summary.json"))
+    assert s["status"] == "complete" and s["solver"]["converged"], (name, s["status"])
+    assert s["intersection_audit"] == {"frames": 5, "intersecting_pairs": 0}, s["intersection_audit"]
+    c = s["contact"]
+    assert c["active_pairs"] > 100 and c["thickness"] == 0.002 < c["min_distance"], c
+    p = s["probes"]
+    # The band presses the rubber strip down: its middle sinks below the rubber's.
+    assert p["band_middle"]["displacement"][2] < -0.01, p
+a, b = final("crossed1"), final("crossed2")
+gap = max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v))
+assert len(a) == len(b) == 369 + 369 and gap < 1e-8, (len(a), gap)
 PY
 
 echo "check: the crushed can, coarse (24 x 12 faces), folds alike on 1 and 2 ranks"

@@ -71,6 +71,11 @@ namespace mlshell {
 struct ContactSettings {
   ContactBarrier barrier;      ///< ξ and ĝ
   bool self_contact = true;    ///< shell–shell pairs count
+  /// Several bodies on one shell mesh (triangle_bodies.hpp): the body of each shell point, and
+  /// per body whether its pairs with itself count. Pairs between two bodies always count. Empty:
+  /// one body, whose pairs with itself count if self_contact.
+  std::vector<int> body_of_point;
+  std::vector<char> self_contact_of_body;
   double stiffness = 0.0;      ///< κ > 0 fixed; 0: adaptive
   double average_mass = 0.0;   ///< m̄ (kg), the average lumped nodal mass (adaptive κ)
   double bbox_diagonal = 0.0;  ///< L (m), the scene's size (adaptive κ)

@@ -73,6 +73,11 @@ class TriangleElasticTerm final : public EnergyTerm {
  public:
   TriangleElasticTerm(const TriangleDiscretization& disc, const ParallelLayout& layout,
                       const TriangleShellParameters& params);
+  /// Several bodies on one mesh: face f has the parameters params[body_of_face[f]] (all with the
+  /// same bending model). A hinge joins two faces of one body (bodies share no edge).
+  TriangleElasticTerm(const TriangleDiscretization& disc, const ParallelLayout& layout,
+                      std::vector<TriangleShellParameters> params,
+                      const std::vector<int>& body_of_face);
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,
                      std::vector<double>* grad, Mat hess) const override;
   /// Per element this rank assembles (layout.local_elements() order): the largest principal
@@ -93,6 +98,7 @@ class TriangleElasticTerm final : public EnergyTerm {
   struct Membrane {
     std::array<PetscInt, 3> nodes;
     TriangleRest rest;
+    int body = 0;  ///< index into params_ and lame_
   };
   struct Bend {
     std::array<PetscInt, 4> nodes;
@@ -113,8 +119,8 @@ class TriangleElasticTerm final : public EnergyTerm {
   std::vector<Bend> shared_hinges_;  // owned by the rank of their first triangle; output only
   std::vector<Plate> plates_;        // midedge bending: one per membrane, in the same order
   std::vector<Point3> reference_;    // X of the local points
-  TriangleShellParameters params_;
-  MembraneParameters lame_;
+  std::vector<TriangleShellParameters> params_;  // per body
+  std::vector<MembraneParameters> lame_;         // per body
 };
 
 /// 1/(2 dt²) (u − û)ᵀ M (u − û) with the consistent mass M_t = ρτĀ_t/12 (1 + δ_ij) of each
@@ -123,6 +129,10 @@ class TriangleInertiaTerm final : public EnergyTerm {
  public:
   TriangleInertiaTerm(const TriangleDiscretization& disc, const ParallelLayout& layout,
                       double area_density, double dt, std::string name = "inertia");
+  /// Several bodies: face f has the area density ρτ = area_density[f].
+  TriangleInertiaTerm(const TriangleDiscretization& disc, const ParallelLayout& layout,
+                      const std::vector<double>& area_density, double dt,
+                      std::string name = "inertia");
   ~TriangleInertiaTerm() override;
   void begin_step(const StepStart& start) override;
   PetscErrorCode add(const std::vector<double>& u, CompensatedSum& energy,

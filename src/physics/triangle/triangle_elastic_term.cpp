@@ -1,6 +1,7 @@
 // Membrane and bending (hinge or midedge) energy of a triangle mesh (see triangle_effects.hpp).
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <stdexcept>
 
 #include "mlshell/psd_projection.hpp"
 #include "mlshell/triangle/triangle_effects.hpp"
@@ -15,7 +16,21 @@ MembraneParameters TriangleShellParameters::lame() const {
 TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
                                          const ParallelLayout& layout,
                                          const TriangleShellParameters& params)
-    : EnergyTerm("elastic"), params_(params), lame_(params.lame()) {
+    : TriangleElasticTerm(disc, layout, std::vector{params},
+                          std::vector<int>(disc.num_faces(), 0)) {}
+
+TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
+                                         const ParallelLayout& layout,
+                                         std::vector<TriangleShellParameters> params,
+                                         const std::vector<int>& body_of_face)
+    : EnergyTerm("elastic"), params_(std::move(params)) {
+  if (params_.empty() || body_of_face.size() != static_cast<std::size_t>(disc.num_faces()))
+    throw std::invalid_argument("TriangleElasticTerm: one body per face and parameters per body");
+  for (const TriangleShellParameters& p : params_) {
+    if (p.bending != params_[0].bending)
+      throw std::invalid_argument("TriangleElasticTerm: every body bends by the same model");
+    lame_.push_back(p.lame());
+  }
   for (int v : layout.local_points()) reference_.push_back(disc.points()[v]);
   const auto& X = disc.points();
   std::vector<int> element_index(disc.num_faces(), -1);
@@ -24,26 +39,28 @@ TriangleElasticTerm::TriangleElasticTerm(const TriangleDiscretization& disc,
     Membrane m;
     for (int k = 0; k < 3; ++k) m.nodes[k] = layout.local_of(t[k]);
     m.rest = TriangleRest::from(X[t[0]], X[t[1]], X[t[2]]);
+    m.body = body_of_face[f];
     element_index[f] = static_cast<int>(membranes_.size());
     membranes_.push_back(m);
   }
-  if (params.bending == TriangleShellParameters::Bending::kMidedge) {
+  if (params_[0].bending == TriangleShellParameters::Bending::kMidedge) {
     // One element per owned triangle: its stencil holds the three wing vertices.
-    const double D = plate_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
     for (int f : layout.local_elements()) {
+      const TriangleShellParameters& p = params_[body_of_face[f]];
+      const double D = plate_stiffness(p.youngs_modulus, p.poisson_ratio, p.thickness);
       const MidedgeStencil s = midedge_stencil(disc, layout, f);
-      plates_.push_back(
-          {s.nodes, MidedgeRest::from(s.reference, s.wings, D, params.poisson_ratio)});
+      plates_.push_back({s.nodes, MidedgeRest::from(s.reference, s.wings, D, p.poisson_ratio)});
     }
     return;
   }
   // A hinge belongs to the rank of its first triangle, whose stencil holds all four vertices.
-  const double k = hinge_stiffness(params.youngs_modulus, params.poisson_ratio, params.thickness);
   // Hinges whose second triangle only is here are kept for face_fields (its stencil holds the
   // four vertices too).
   for (const Hinge& h : disc.topology().hinges()) {
     const bool owned = layout.face_owner(h.faces[0]) == layout.rank();
     if (!owned && layout.face_owner(h.faces[1]) != layout.rank()) continue;
+    const TriangleShellParameters& p = params_[body_of_face[h.faces[0]]];
+    const double k = hinge_stiffness(p.youngs_modulus, p.poisson_ratio, p.thickness);
     Bend b;
     for (int i = 0; i < 4; ++i) b.nodes[i] = layout.local_of(h.v[i]);
     b.rest = HingeRest::from(X[h.v[0]], X[h.v[1]], X[h.v[2]], X[h.v[3]], k);
@@ -69,9 +86,10 @@ double TriangleElasticTerm::membrane_energy(const Membrane& m, const std::vector
                                             Vector9* g, Matrix9* H) const {
   const Eigen::Vector3d x0 = position(u, m.nodes[0]), x1 = position(u, m.nodes[1]),
                         x2 = position(u, m.nodes[2]);
-  return params_.membrane == TriangleShellParameters::Membrane::kNeoHookean
-             ? neo_hookean_membrane(m.rest, lame_, x0, x1, x2, g, H)
-             : stvk_membrane(m.rest, lame_, x0, x1, x2, g, H);
+  const MembraneParameters& lame = lame_[m.body];
+  return params_[m.body].membrane == TriangleShellParameters::Membrane::kNeoHookean
+             ? neo_hookean_membrane(m.rest, lame, x0, x1, x2, g, H)
+             : stvk_membrane(m.rest, lame, x0, x1, x2, g, H);
 }
 
 PetscErrorCode TriangleElasticTerm::add(const std::vector<double>& u, CompensatedSum& energy,
@@ -82,10 +100,12 @@ PetscErrorCode TriangleElasticTerm::add(const std::vector<double>& u, Compensate
   std::vector<PetscInt> nodes(3);
   // The energy near rest cancels pieces of size ~ 2μτĀ (tr M − 2 − ln det M): its rounding
   // error is that of those pieces, not of the small result.
-  const double piece = 2.0 * (lame_.mu + std::abs(lame_.lambda)) * lame_.thickness;
+  std::vector<double> piece;
+  for (const MembraneParameters& l : lame_)
+    piece.push_back(2.0 * (l.mu + std::abs(l.lambda)) * l.thickness);
   for (const Membrane& m : membranes_) {
     const double e = membrane_energy(m, u, grad ? &g9 : nullptr, hess ? &H9 : nullptr);
-    energy.add_with_magnitude(e, std::abs(e) + piece * m.rest.area);
+    energy.add_with_magnitude(e, std::abs(e) + piece[m.body] * m.rest.area);
     if (!std::isfinite(e)) continue;  // the sum is +inf: the solver rejects the point
     nodes.assign(m.nodes.begin(), m.nodes.end());
     if (grad) add_local_gradient(nodes, g9.data(), *grad);

@@ -6,6 +6,13 @@ namespace mlshell {
 TriangleInertiaTerm::TriangleInertiaTerm(const TriangleDiscretization& disc,
                                          const ParallelLayout& layout, double area_density,
                                          double dt, std::string name)
+    : TriangleInertiaTerm(disc, layout, std::vector<double>(disc.num_faces(), area_density), dt,
+                          std::move(name)) {}
+
+TriangleInertiaTerm::TriangleInertiaTerm(const TriangleDiscretization& disc,
+                                         const ParallelLayout& layout,
+                                         const std::vector<double>& area_density, double dt,
+                                         std::string name)
     : EnergyTerm(std::move(name)), predictor_(3 * layout.num_local_points(), 0.0) {
   const auto& X = disc.points();
   for (int f : layout.local_elements()) {
@@ -13,7 +20,7 @@ TriangleInertiaTerm::TriangleInertiaTerm(const TriangleDiscretization& disc,
     const double area = 0.5 * (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]).norm();
     Element e;
     for (int k = 0; k < 3; ++k) e.nodes[k] = layout.local_of(t[k]);
-    e.mass = area_density * area / 12.0 / (dt * dt);
+    e.mass = area_density.at(f) * area / 12.0 / (dt * dt);
     elements_.push_back(e);
   }
   PetscCallAbort(layout.comm(), layout.create_matrix(&mass_));

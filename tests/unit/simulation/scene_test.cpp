@@ -745,6 +745,43 @@ TEST(SceneErrors, InlineDefects) {
        }),
        2,
        {"geometry.mesh.imperfection", "wave"}},
+      {"bodies_on_a_cage",
+       with([](SceneText& t) { t.extra = "bodies: [{name: b, mesh: {generator: sphere}}]\n"; }),
+       5,
+       {"bodies: several bodies need triangle meshes", "geometry: {mesh: {...}}"}},
+      {"bodies_same_name",
+       with([](SceneText& t) {
+         t.geometry = "geometry: {mesh: {generator: rectangle}}\n";
+         t.material = "material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
+                      "thickness: 1e-3, volume_density: 1}\n";
+         t.effects = "";
+         t.extra = "bodies:\n  - {name: b, mesh: {generator: sphere}}\n"
+                   "  - {name: b, mesh: {generator: sphere}}\n";
+       }),
+       6,
+       {"bodies[1].name: names another body already; got 'b'"}},
+      {"bodies_other_bending",
+       with([](SceneText& t) {
+         t.geometry = "geometry: {mesh: {generator: rectangle}}\n";
+         t.material = "material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
+                      "thickness: 1e-3, volume_density: 1}\n";
+         t.effects = "";
+         t.extra = "bodies:\n  - name: b\n    mesh: {generator: sphere}\n"
+                   "    material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
+                   "thickness: 1e-3, volume_density: 1, bending: midedge}\n";
+       }),
+       7,
+       {"bodies[0].material: every body bends by the same model", "bending: hinge"}},
+      {"bodies_unknown_key",
+       with([](SceneText& t) {
+         t.geometry = "geometry: {mesh: {generator: rectangle}}\n";
+         t.material = "material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
+                      "thickness: 1e-3, volume_density: 1}\n";
+         t.effects = "";
+         t.extra = "bodies: [{name: b, mesh: {generator: sphere}, offset: [0, 0, 1]}]\n";
+       }),
+       4,
+       {"bodies[0]", "offset"}},
       {"unknown_generator",
        with([](SceneText& t) { t.geometry = "geometry: {cage: {generator: circle}}\n"; }),
        1,
@@ -992,7 +1029,7 @@ TEST(SceneFormatHelp, IsWrappedAndOfReferenceLength) {
     EXPECT_EQ(line.find('\t'), std::string::npos) << line;
   }
   EXPECT_GE(lines, 80);
-  EXPECT_LE(lines, 135);
+  EXPECT_LE(lines, 140);
 }
 
 TEST(SceneFormatHelp, NamesEveryKey) {
@@ -1009,6 +1046,8 @@ TEST(SceneFormatHelp, NamesEveryKey) {
                           "obj:",
                           "refine:",
                           "material:",
+                          "bodies:",
+                          "self_contact:",
                           "model: clyde-orthotropic",
                           "preset: denim",
                           "k:",

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mlshell/scene.hpp"
+#include "mlshell/triangle/triangle_bodies.hpp"
 #include "mlshell/triangle/triangle_effect_builder.hpp"
 #include "mlshell/triangle/triangle_generators.hpp"
 #include "mlshell/triangle/triangle_levels.hpp"
@@ -55,7 +56,7 @@ struct TriangleProblem {
   std::unique_ptr<TriangleLevels> levels;
   std::unique_ptr<LevelProblem> problem;
   TriangleProblem(const Scene& scene, MPI_Comm comm) {
-    levels = std::make_unique<TriangleLevels>(comm, build_triangle_mesh(*scene.geometry.mesh));
+    levels = std::make_unique<TriangleLevels>(comm, build_scene_mesh(scene));
     problem = build_triangle_problem(scene, levels->discretization(0), levels->layout(0),
                                      CageFrame::from(scene.geometry));
     problem->begin_step(scene.time.dt, nullptr);
