@@ -552,9 +552,8 @@ PetscErrorCode Simulation::run(int* status) {
       throw SceneError(scene_.file.string() + ": geometry.mesh: the " +
                        (first_step_ == 0 ? std::string("input surface")
                                          : "checkpoint's state") +
-                       (contact_ && !contact_->obstacles().empty()
-                            ? " intersects itself or a collider: "
-                            : " intersects itself: ") +
+                       (scene_.bodies.empty() ? " intersects itself" : " intersects itself or a body") +
+                       (contact_ && !contact_->obstacles().empty() ? " or a collider: " : ": ") +
                        message);
   }
   if (contact_) PetscCall(start_contact());

@@ -19,6 +19,7 @@
 
 #include "mlshell/contact/audit/intersection_audit.hpp"
 #include "mlshell/contact/contact_term.hpp"
+#include "mlshell/triangle/triangle_bodies.hpp"
 #include "mlshell/triangle/triangle_discretization.hpp"
 #include "mlshell/unused_options.hpp"
 
@@ -170,11 +171,19 @@ PetscErrorCode Simulation::audit_frame(const FrameSeries& series, Vec state, int
   ++audited_frames_;
   intersecting_pairs_ += found[0];
   *pairs = found[0];
+  // With several bodies, each triangle is named with its body.
+  const auto triangle = [&](long face) {
+    std::string text = "triangle " + std::to_string(face);
+    if (!scene_.bodies.empty() && series.disc == disc_) {
+      const TriangleBodies bodies = TriangleBodies::of(scene_, triangles->mesh());
+      text += " of '" + bodies.names[bodies.of_face[face]] + "'";
+    }
+    return text;
+  };
   if (found[0] > 0)
     *message = std::to_string(found[0]) + " pair(s) of triangles intersect (the first: " +
-               "triangle " + std::to_string(found[1]) + " and " +
-               (found[2] >= 0 ? "triangle " + std::to_string(found[2])
-                              : "collider " + std::to_string(-1 - found[2])) +
+               triangle(found[1]) + " and " +
+               (found[2] >= 0 ? triangle(found[2]) : "collider " + std::to_string(-1 - found[2])) +
                ", at step " + std::to_string(n) + ", t = " + std::to_string(t) + " s)";
   PetscFunctionReturn(0);
 }

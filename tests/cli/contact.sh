@@ -366,4 +366,6 @@ effects:
   - contact
 time: {dt: 0.01, steps: 1}
 YAML
+sed 's|translate: \[0, 0, 0.02\]|translate: [0, 0, 0]|' crossed.yaml |
+  bad bodies_through "bodies_through.yaml: geometry.mesh: the input surface intersects itself or a body: .*of 'band' and triangle [0-9]* of 'crossed_strips'"
 echo "PASS"
