@@ -213,58 +213,60 @@ assert s["intersection_audit"] == {"frames": 3, "intersecting_pairs": 0}, s["int
 PY
 done
 
+same_on_1_and_2() {  # NAME FRAMES VERTICES TOL: out/NAME1 (1 rank) and out/NAME2 (2 ranks)
+  # complete and converged, FRAMES audited frames without intersection, the thickness kept, and
+  # the same final state (VERTICES vertices, within TOL m)
+  $PY - "$@" <<'PY' || die "$1: 1 against 2 ranks"
+import json, sys
+from pathlib import Path
+
+name, frames, vertices, tol = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
+
+def final(run):
+    obj = sorted(Path(f"out/{run}").glob("frame_*.obj"))[-1].read_text().splitlines()
+    return [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
+
+for run in (name + "1", name + "2"):
+    s = json.load(open(f"out/{run}/summary.json"))
+    assert s["status"] == "complete" and s["solver"]["converged"], (run, s["status"])
+    assert s["intersection_audit"] == {"frames": frames, "intersecting_pairs": 0}, s["intersection_audit"]
+    assert s["contact"]["thickness"] < s["contact"]["min_distance"], s["contact"]
+a, b = final(name + "1"), final(name + "2")
+gap = max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v))
+assert len(a) == len(b) == vertices and gap < tol, (len(a), gap)
+PY
+}
+
 echo "check: the twist, coarse (12 x 12 faces, 16 steps of 0.5 s), winds a rope on 1 and 2 ranks alike"
 cp "$SRC/examples/contact/twist-options.yaml" .
 sed -e 's/faces: \[16, 16\]/faces: [12, 12]/' -e 's/dt: 0.1, steps: 150/dt: 0.5, steps: 16/' \
   "$SRC/examples/contact/twist.yaml" >twist.yaml
 grep -q "steps: 16" twist.yaml || die "twist.yaml: $(cat twist.yaml)"
 for ranks in 1 2; do run_scene twist.yaml "twist$ranks" $ranks; done
+same_on_1_and_2 twist 17 169 1e-5  # |g| < 1e-5 N: the same state
 $PY - <<'PY' || die "twist"
 import csv, json
-from pathlib import Path
-
-def final(name):
-    obj = sorted(Path(f"out/{name}").glob("frame_*.obj"))[-1].read_text().splitlines()
-    return [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
 
 for name in ("twist1", "twist2"):
-    s = json.load(open(f"out/{name}/summary.json"))
-    assert s["status"] == "complete" and s["solver"]["converged"], (name, s["status"])
-    assert s["intersection_audit"] == {"frames": 17, "intersecting_pairs": 0}, s["intersection_audit"]
-    c = s["contact"]
-    assert c["active_pairs"] > 100 and c["thickness"] < c["min_distance"], c  # the rope's layers
+    assert json.load(open(f"out/{name}/summary.json"))["contact"]["active_pairs"] > 100  # layers
     rows = list(csv.DictReader(open(f"out/{name}/steps.csv")))
     kappa = [float(r["contact_stiffness"]) for r in rows]
     # The rope's pull raises κ past IPC's cap of 100 κ₀ (docs/contact.md#stiffness).
     assert max(kappa) > 1000 * kappa[0], kappa
-a, b = final("twist1"), final("twist2")
-gap = max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v))
-assert len(a) == len(b) == 169 and gap < 1e-5, gap  # |g| < 1e-5 N: the same state
 PY
 
 echo "check: two bodies (crossed strips), each with its own material, on 1 and 2 ranks alike"
 sed "s|../../petsc-options|$SRC/petsc-options|" "$SRC/examples/contact/crossed_strips.yaml" >crossed.yaml
 for ranks in 1 2; do run_scene crossed.yaml "crossed$ranks" $ranks; done
+same_on_1_and_2 crossed 5 738 1e-8  # 369 vertices a strip
 $PY - <<'PY' || die "crossed strips"
 import json
-from pathlib import Path
-
-def final(name):
-    obj = sorted(Path(f"out/{name}").glob("frame_*.obj"))[-1].read_text().splitlines()
-    return [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
 
 for name in ("crossed1", "crossed2"):
     s = json.load(open(f"out/{name}/summary.json"))
-    assert s["status"] == "complete" and s["solver"]["converged"], (name, s["status"])
-    assert s["intersection_audit"] == {"frames": 5, "intersecting_pairs": 0}, s["intersection_audit"]
-    c = s["contact"]
-    assert c["active_pairs"] > 100 and c["thickness"] == 0.002 < c["min_distance"], c
-    p = s["probes"]
-    # The band presses the rubber strip down: its middle sinks below the rubber's.
-    assert p["band_middle"]["displacement"][2] < -0.01, p
-a, b = final("crossed1"), final("crossed2")
-gap = max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v))
-assert len(a) == len(b) == 369 + 369 and gap < 1e-8, (len(a), gap)
+    # The thickest body's thickness; the band presses the rubber strip down.
+    assert s["contact"]["active_pairs"] > 100 and s["contact"]["thickness"] == 0.002, s["contact"]
+    assert s["probes"]["band_middle"]["displacement"][2] < -0.01, s["probes"]
 PY
 
 echo "check: the crushed can, coarse (24 x 12 faces), folds alike on 1 and 2 ranks"
@@ -272,28 +274,19 @@ cp "$SRC/examples/contact/can_crush-options.yaml" .
 sed 's/faces: \[32, 16\]/faces: [24, 12]/' "$SRC/examples/contact/can_crush.yaml" >can.yaml
 grep -q "faces: \[24, 12\]" can.yaml || die "can.yaml: $(cat can.yaml)"
 for ranks in 1 2; do run_scene can.yaml "can$ranks" $ranks; done
+# The same folds, not mirror images (with one imperfection mode, 2 ranks folded mirrored):
+# |g| < 1e-4 N against a wall stiffness of about 1e7 N/m.
+same_on_1_and_2 can 11 312 1e-8
 $PY - <<'PY' || die "can"
 import json, math
 from pathlib import Path
 
-def final(name):
-    obj = sorted(Path(f"out/{name}").glob("frame_*.obj"))[-1].read_text().splitlines()
-    return [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
-
-for name in ("can1", "can2"):
-    s = json.load(open(f"out/{name}/summary.json"))
-    assert s["status"] == "complete" and s["solver"]["converged"], (name, s["status"])
-    assert s["intersection_audit"] == {"frames": 11, "intersecting_pairs": 0}, s["intersection_audit"]
-    c = s["contact"]
-    assert c["active_pairs"] > 50 and c["thickness"] < c["min_distance"], c  # folds against folds
-a, b = final("can1"), final("can2")
+assert json.load(open("out/can1/summary.json"))["contact"]["active_pairs"] > 50  # folds on folds
+obj = sorted(Path("out/can1").glob("frame_*.obj"))[-1].read_text().splitlines()
+a = [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
 # Crushed 3 cm, and buckled: the wall leaves its 33 mm radius by centimetres, not micrometres.
 assert abs(max(p[2] for p in a) - 0.07) < 1e-3, max(p[2] for p in a)
 assert max(abs(math.hypot(p[0], p[1]) - 0.033) for p in a) > 5e-3
-# The same folds, not mirror images (with one imperfection mode, 2 ranks folded mirrored):
-# |g| < 1e-4 N against a wall stiffness of about 1e7 N/m.
-gap = max(abs(p - q) for u, v in zip(a, b) for p, q in zip(u, v))
-assert len(a) == len(b) == 312 and gap < 1e-8, gap
 PY
 
 echo "check: the sphere pressing the strip into a plane above cannot arrive: exit 3, no intersection"
