@@ -701,6 +701,13 @@ TEST(SceneErrors, InlineDefects) {
     change(text);
     return text;
   };
+  // A triangle-mesh scene without effects (for the bodies' cases).
+  const auto triangle_mesh = [](SceneText& t) {
+    t.geometry = "geometry: {mesh: {generator: rectangle}}\n";
+    t.material = "material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
+                 "thickness: 1e-3, volume_density: 1}\n";
+    t.effects = "";
+  };
   const std::vector<Case> cases{
       {"quoted_number",
        with([](SceneText& t) { t.time = "time: {dt: \"1.0\", steps: 2}\n"; }),
@@ -750,22 +757,16 @@ TEST(SceneErrors, InlineDefects) {
        5,
        {"bodies: several bodies need triangle meshes", "geometry: {mesh: {...}}"}},
       {"bodies_same_name",
-       with([](SceneText& t) {
-         t.geometry = "geometry: {mesh: {generator: rectangle}}\n";
-         t.material = "material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
-                      "thickness: 1e-3, volume_density: 1}\n";
-         t.effects = "";
+       with([&](SceneText& t) {
+         triangle_mesh(t);
          t.extra = "bodies:\n  - {name: b, mesh: {generator: sphere}}\n"
                    "  - {name: b, mesh: {generator: sphere}}\n";
        }),
        6,
        {"bodies[1].name: names another body already; got 'b'"}},
       {"bodies_other_bending",
-       with([](SceneText& t) {
-         t.geometry = "geometry: {mesh: {generator: rectangle}}\n";
-         t.material = "material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
-                      "thickness: 1e-3, volume_density: 1}\n";
-         t.effects = "";
+       with([&](SceneText& t) {
+         triangle_mesh(t);
          t.extra = "bodies:\n  - name: b\n    mesh: {generator: sphere}\n"
                    "    material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
                    "thickness: 1e-3, volume_density: 1, bending: midedge}\n";
@@ -773,11 +774,8 @@ TEST(SceneErrors, InlineDefects) {
        7,
        {"bodies[0].material: every body bends by the same model", "bending: hinge"}},
       {"bodies_unknown_key",
-       with([](SceneText& t) {
-         t.geometry = "geometry: {mesh: {generator: rectangle}}\n";
-         t.material = "material: {model: neo-hookean, youngs_modulus: 1e6, poisson_ratio: 0.3, "
-                      "thickness: 1e-3, volume_density: 1}\n";
-         t.effects = "";
+       with([&](SceneText& t) {
+         triangle_mesh(t);
          t.extra = "bodies: [{name: b, mesh: {generator: sphere}, offset: [0, 0, 1]}]\n";
        }),
        4,
