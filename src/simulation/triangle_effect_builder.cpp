@@ -33,10 +33,10 @@ std::vector<double> area_force(const TriangleDiscretization& disc, const Paralle
   const auto& X = disc.points();
   for (int e : layout.local_elements()) {
     const Triangle& t = disc.mesh().triangles[e];
-    const double area = 0.5 * (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]).norm() *
-                        (scale ? (*scale)[e] : 1.0);
+    const double area = 0.5 * (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]).norm();
+    const double s = scale ? (*scale)[e] : 1.0;
     for (int v : t)
-      for (int c = 0; c < 3; ++c) force[3 * layout.local_of(v) + c] += f[c] * area / 3.0;
+      for (int c = 0; c < 3; ++c) force[3 * layout.local_of(v) + c] += s * f[c] * area / 3.0;
   }
   return force;
 }
@@ -89,12 +89,14 @@ std::unique_ptr<ContactTerm> build_contact_term(const Scene& scene, const Contac
   for (const BodySpec& b : scene.bodies)
     settings.self_contact_of_body.push_back(b.self_contact.value_or(c.self));
   settings.stiffness = c.stiffness.value_or(0.0);
-  double mass = 0.0;
+  std::vector<double> body_area(bodies.size(), 0.0);
   for (int f = 0; f < mesh.num_triangles(); ++f) {
     const Triangle& t = mesh.triangles[f];
     const Point3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &d = mesh.points[t[2]];
-    mass += bodies.materials[bodies.of_face[f]]->density * 0.5 * (b - a).cross(d - a).norm();
+    body_area[bodies.of_face[f]] += 0.5 * (b - a).cross(d - a).norm();
   }
+  double mass = 0.0;
+  for (int b = 0; b < bodies.size(); ++b) mass += bodies.materials[b]->density * body_area[b];
   settings.average_mass = mass / mesh.num_points();
   settings.bbox_diagonal = diagonal;
   // The force per vertex: the distributed loads' share, at least that of a membrane strained
