@@ -372,6 +372,25 @@ PetscErrorCode Simulation::write_summary(const std::string& status, const SolveR
                                      {"huge_pages", Json(huge_pages_requested())}})}};
     if (scene_.time.progressive()) top.emplace_back("progressive", progressive);
     if (contact_) top.emplace_back("contact", contact);
+    // Several bodies: each one's name, size and material in brief.
+    if (const auto* triangles = dynamic_cast<const TriangleDiscretization*>(disc_);
+        triangles && !scene_.bodies.empty()) {
+      const TriangleBodies bodies = TriangleBodies::of(scene_, triangles->mesh());
+      Json::Array list;
+      for (int b = 0; b < bodies.size(); ++b) {
+        const TriangleShellParameters p = bodies.parameters(b);
+        list.push_back(Json(Json::Object{
+            {"name", Json(bodies.names[b])},
+            {"vertices", Json(static_cast<long long>(
+                             std::count(bodies.of_point.begin(), bodies.of_point.end(), b)))},
+            {"faces", Json(static_cast<long long>(
+                          std::count(bodies.of_face.begin(), bodies.of_face.end(), b)))},
+            {"youngs_modulus", Json(p.youngs_modulus)},
+            {"thickness", Json(p.thickness)},
+            {"area_density", Json(bodies.materials[b]->density)}}));
+      }
+      top.emplace_back("bodies", Json(list));
+    }
     if (spectrum_)
       top.emplace_back(
           "hessian",

@@ -266,6 +266,8 @@ for name in ("crossed1", "crossed2"):
     s = json.load(open(f"out/{name}/summary.json"))
     # The thickest body's thickness; the band presses the rubber strip down.
     assert s["contact"]["active_pairs"] > 100 and s["contact"]["thickness"] == 0.002, s["contact"]
+    assert [(b["name"], b["vertices"], b["faces"], b["thickness"]) for b in s["bodies"]] == [
+        ("crossed_strips", 369, 640, 0.002), ("band", 369, 640, 0.00066)], s["bodies"]
     assert s["probes"]["band_middle"]["displacement"][2] < -0.01, s["probes"]
 PY
 
