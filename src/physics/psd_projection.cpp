@@ -10,18 +10,13 @@ namespace mlshell {
 
 namespace {
 
-// P(S) = Σ max(λ_i, 0) v_i v_iᵀ for S = ½ (H + Hᵀ). Written from whichever side has fewer
-// terms, S − Σ_{λ_i < 0} λ_i v_i v_iᵀ or Σ_{λ_i > 0} λ_i v_i v_iᵀ, so that the result carries the
-// round-off of the smaller part only (a nearly-PSD H changes by O(ε |λ_neg|), a negative
-// definite one becomes exactly 0).
-template <class Matrix, class Map>
-void project(Map H) {
-  if (!H.allFinite()) return;
-  const Matrix S = 0.5 * (H + H.transpose());
-  Eigen::SelfAdjointEigenSolver<Matrix> eig(S);
-  if (eig.info() != Eigen::Success) return;
-  const auto& lambda = eig.eigenvalues();  // ascending
-  const auto& V = eig.eigenvectors();
+// P(S) = Σ max(λ_i, 0) v_i v_iᵀ from S's eigenvalues λ (ascending) and orthonormal
+// eigenvectors V (all of them, or all but a null space S leaves alone), into H. Written from
+// whichever side has fewer terms, S − Σ_{λ_i < 0} λ_i v_i v_iᵀ or Σ_{λ_i > 0} λ_i v_i v_iᵀ, so
+// that the result carries the round-off of the smaller part only (a nearly-PSD H changes by
+// O(ε |λ_neg|), a negative definite one becomes exactly 0).
+template <class Matrix, class Values, class Vectors, class Out>
+void write_projection(const Matrix& S, const Values& lambda, const Vectors& V, Out&& H) {
   const Eigen::Index n = lambda.size();
   Eigen::Index negative = 0;
   while (negative < n && lambda[negative] < 0.0) ++negative;
@@ -37,18 +32,27 @@ void project(Map H) {
       P.noalias() -= lambda[i] * V.col(i) * V.col(i).transpose();
     H = 0.5 * (P + P.transpose());
   } else {
-    Matrix P = Matrix::Zero(n, n);
+    Matrix P = Matrix::Zero(S.rows(), S.cols());
     for (Eigen::Index i = n - positive; i < n; ++i)
       P.noalias() += lambda[i] * V.col(i) * V.col(i).transpose();
     H = 0.5 * (P + P.transpose());
   }
 }
 
+// P(½ (H + Hᵀ)) by the eigen-decomposition of the whole matrix.
+template <class Matrix, class Map>
+void project(Map H) {
+  if (!H.allFinite()) return;
+  const Matrix S = 0.5 * (H + H.transpose());
+  Eigen::SelfAdjointEigenSolver<Matrix> eig(S);
+  if (eig.info() != Eigen::Success) return;
+  write_projection(S, eig.eigenvalues(), eig.eigenvectors(), H);
+}
+
 // Helmert's orthonormal basis of the K-vectors whose entries sum to zero, times I₃: the
 // 3K × 3(K − 1) matrix T whose columns span every motion of K points but their common
 // translation. Column (j, c), j = 1..K−1, moves points 0..j−1 by s_j and point j by −j s_j along
 // axis c, s_j = 1/√(j(j+1)). Its products are prefix and suffix sums, O(K) per row, not O(K²).
-template <int K>
 double helmert(int j) {
   return 1.0 / std::sqrt(static_cast<double>(j) * (j + 1));
 }
@@ -60,7 +64,7 @@ Eigen::Matrix<double, Matrix::RowsAtCompileTime, 3 * (K - 1)> times_t(const Matr
   for (int c = 0; c < 3; ++c) {
     auto prefix = A.col(c).eval();
     for (int j = 1; j < K; ++j) {
-      out.col(3 * (j - 1) + c) = helmert<K>(j) * (prefix - j * A.col(3 * j + c));
+      out.col(3 * (j - 1) + c) = helmert(j) * (prefix - j * A.col(3 * j + c));
       prefix += A.col(3 * j + c);
     }
   }
@@ -77,8 +81,8 @@ Eigen::Matrix<double, 3 * K, Matrix::ColsAtCompileTime> t_times(const Matrix& V)
     for (int p = K - 1; p >= 0; --p) {
       out.row(3 * p + c) = suffix;
       if (p >= 1) {
-        out.row(3 * p + c) -= p * helmert<K>(p) * V.row(3 * (p - 1) + c);
-        suffix += helmert<K>(p) * V.row(3 * (p - 1) + c);
+        out.row(3 * p + c) -= p * helmert(p) * V.row(3 * (p - 1) + c);
+        suffix += helmert(p) * V.row(3 * (p - 1) + c);
       }
     }
   }
@@ -113,23 +117,8 @@ void project_translation_free(Eigen::Matrix<double, 3 * K, 3 * K>& H) {
   const Eigen::Matrix<double, M, M> R = times_t<K>(Eigen::Matrix<double, M, N>(ST.transpose()));
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, M, M>> eig(R);
   if (eig.info() != Eigen::Success) return;
-  const auto& lambda = eig.eigenvalues();  // ascending
-  int negative = 0;
-  while (negative < M && lambda[negative] < 0.0) ++negative;
-  if (negative == 0) {
-    H = S;
-    return;
-  }
-  int positive = 0;
-  for (int i = negative; i < M; ++i) positive += lambda[i] > 0.0;
-  const Eigen::Matrix<double, N, M> W = t_times<K>(eig.eigenvectors());  // S's eigenvectors
-  Matrix P = negative <= positive ? S : Matrix::Zero();
-  if (negative <= positive)
-    for (int i = 0; i < negative; ++i) P.noalias() -= lambda[i] * W.col(i) * W.col(i).transpose();
-  else
-    for (int i = M - positive; i < M; ++i)
-      P.noalias() += lambda[i] * W.col(i) * W.col(i).transpose();
-  H = 0.5 * (P + P.transpose());
+  // S's eigenvectors are T's images of R's.
+  write_projection(S, eig.eigenvalues(), t_times<K>(eig.eigenvectors()), H);
 }
 
 }  // namespace

@@ -580,7 +580,7 @@ MUTATIONS = [
      "    if (moved > 1e-8 * K * scale) {", "    if (false) {",
      "a stencil Hessian that translations move is projected as if they were in its null space", ()),
     ("psd-stencil-helmert-suffix", "src/physics/psd_projection.cpp",
-     "        suffix += helmert<K>(p) * V.row(3 * (p - 1) + c);",
+     "        suffix += helmert(p) * V.row(3 * (p - 1) + c);",
      "        suffix += V.row(3 * (p - 1) + c);",
      "the eigenvectors come back from the reduced motions with a wrong weight", ()),
     ("bodies-self-within-only", "src/contact/contact_term.cpp",
